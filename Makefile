@@ -1,0 +1,55 @@
+# Hamta: `make demo` and `make test` work on a fresh Debian machine (apt-get needs root or sudo).
+SHELL := /bin/bash
+PYTHON ?= python3
+SYSTEM_PYTHON := /usr/bin/python3
+VENV := .venv
+QVENV := .venv-qgis
+SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+APT_PACKAGES := qgis python3-qgis qgis-providers python3-numpy python3-scipy python3-opencv python3-rasterio \
+	python3-pyproj python3-shapely python3-pytest python3-venv python3-setuptools gdal-bin qttools5-dev-tools
+export PIP_DISABLE_PIP_VERSION_CHECK := 1
+
+.PHONY: demo test test-wheels test-debian sysdeps i18n bench clean
+
+demo: $(VENV)/.ok
+	$(VENV)/bin/hamta demo --out demo-output
+
+test: $(VENV)/.ok $(QVENV)/.ok
+	$(MAKE) --no-print-directory test-wheels test-debian
+
+# Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL).
+test-wheels: $(VENV)/.ok
+	$(VENV)/bin/python -m pytest tests/core -q
+
+# Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...).
+test-debian: $(QVENV)/.ok
+	$(QVENV)/bin/python -m pytest tests -q
+
+bench: $(VENV)/.ok
+	$(VENV)/bin/hamta bench
+
+$(VENV)/.ok: pyproject.toml
+	@$(PYTHON) -m venv --help >/dev/null 2>&1 && $(PYTHON) -c "import ensurepip" 2>/dev/null || \
+		{ $(SUDO) apt-get update -q && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -q python3-venv python3-pip; }
+	$(PYTHON) -m venv $(VENV)
+	$(VENV)/bin/pip install -q -e '.[test]'
+	touch $@
+
+sysdeps:
+	@dpkg -s $(APT_PACKAGES) >/dev/null 2>&1 || { \
+		$(SUDO) apt-get update -q && \
+		$(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(APT_PACKAGES); }
+
+# Debian's interpreter with Debian's packages only: --no-deps keeps pip wheels out of the QGIS process.
+$(QVENV)/.ok: pyproject.toml | sysdeps
+	$(SYSTEM_PYTHON) -m venv --system-site-packages $(QVENV)
+	$(QVENV)/bin/pip install -q --no-deps --no-build-isolation -e .
+	mkdir -p $(QVENV)/share && ln -sfn /usr/share/proj $(QVENV)/share/proj
+	touch $@
+
+# Rebuild the compiled translations from the .ts sources.
+i18n: sysdeps
+	lrelease -silent i18n/*.ts
+
+clean:
+	rm -rf $(VENV) $(QVENV) demo-output bench-output *.egg-info

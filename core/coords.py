@@ -1,0 +1,80 @@
+"""Pixel and map coordinate conventions, fixed once for the whole package.
+
+Hamta's pixel coordinates are continuous ``(x, y)`` = (column, row) with the origin at the
+top-left *corner* of the top-left pixel, as GDAL geotransforms and GCPs use them: the centre of
+pixel (row r, col c) is (c + 0.5, r + 0.5). OpenCV puts pixel centres at integers; every +0.5
+shift between the two lives here. Arrays of points are ``(N, 2)`` float64 named ``*_xy``.
+"""
+from __future__ import annotations
+
+import numpy as np
+from affine import Affine
+
+
+def as_xy(points) -> np.ndarray:
+    """Return ``points`` as a C-contiguous ``(N, 2)`` float64 array."""
+    xy = np.asarray(points, dtype=np.float64)
+    if xy.ndim == 1 and xy.size == 2:
+        xy = xy[None, :]
+    if xy.ndim != 2 or xy.shape[1] != 2:
+        raise ValueError(f"expected points of shape (N, 2), got {xy.shape}")
+    return np.ascontiguousarray(xy)
+
+
+def opencv_to_corner(xy) -> np.ndarray:
+    """OpenCV pixel coordinates (centres at integers) -> corner-origin pixel coordinates."""
+    return as_xy(xy) + 0.5
+
+
+def corner_to_opencv(xy) -> np.ndarray:
+    """Corner-origin pixel coordinates -> OpenCV pixel coordinates (centres at integers)."""
+    return as_xy(xy) - 0.5
+
+
+def matrix_corner_to_opencv(h: np.ndarray) -> np.ndarray:
+    """A 3x3 map between corner-origin pixel spaces, re-expressed between OpenCV pixel spaces.
+
+    Use it to hand a corner-convention homography to ``cv2.warpPerspective`` / ``warpAffine``.
+    """
+    shift = np.array([[1.0, 0.0, 0.5], [0.0, 1.0, 0.5], [0.0, 0.0, 1.0]])
+    unshift = np.array([[1.0, 0.0, -0.5], [0.0, 1.0, -0.5], [0.0, 0.0, 1.0]])
+    return unshift @ np.asarray(h, dtype=np.float64) @ shift
+
+
+def apply_matrix(h: np.ndarray, xy) -> np.ndarray:
+    """Apply a 3x3 projective matrix to ``(N, 2)`` points (same space convention in and out)."""
+    xy = as_xy(xy)
+    h = np.asarray(h, dtype=np.float64)
+    w = xy @ h[2, :2] + h[2, 2]
+    out = (xy @ h[:2, :2].T + h[:2, 2]) / w[:, None]
+    return out
+
+
+def affine_to_matrix(transform: Affine) -> np.ndarray:
+    """A rasterio/GDAL geotransform as a 3x3 matrix (pixel corner coordinates -> map)."""
+    t = transform
+    return np.array([[t.a, t.b, t.c], [t.d, t.e, t.f], [0.0, 0.0, 1.0]])
+
+
+def pixel_to_map(transform: Affine, xy) -> np.ndarray:
+    """Pixel (corner convention) -> map coordinates of a raster with geotransform ``transform``."""
+    return apply_matrix(affine_to_matrix(transform), xy)
+
+
+def map_to_pixel(transform: Affine, xy) -> np.ndarray:
+    """Map coordinates -> pixel (corner convention) of a raster with geotransform ``transform``."""
+    return apply_matrix(np.linalg.inv(affine_to_matrix(transform)), xy)
+
+
+def gdal_coefficients(transform: Affine) -> list:
+    """The 6 GDAL geotransform coefficients ``[c, a, b, f, d, e]`` of a rasterio ``Affine``."""
+    return [float(v) for v in transform.to_gdal()]
+
+
+def compose(*transforms: Affine) -> Affine:
+    """Product of affine transforms, left to right as ``t1 * t2 * ...`` (works with affine 2 and 3,
+    whose operators differ)."""
+    m = np.eye(3)
+    for t in transforms:
+        m = m @ affine_to_matrix(t)
+    return Affine(m[0, 0], m[0, 1], m[0, 2], m[1, 0], m[1, 1], m[1, 2])

@@ -1,0 +1,38 @@
+"""Errors Hamta raises on bad input or an impossible registration.
+
+Every error a user can cause derives from :class:`HamtaError`; its message names the file and the
+problem. Front ends translate it once: the CLI prints it, Processing raises ``QgsProcessingException``.
+"""
+
+
+class HamtaError(Exception):
+    """Root of every error Hamta raises for bad input or a registration that cannot be done."""
+
+
+class InputError(HamtaError, ValueError):
+    """An input raster is missing, unreadable, empty, constant or of an unsupported type."""
+
+
+class NoOverlapError(HamtaError):
+    """The georeferenced footprints of target and reference do not intersect."""
+
+
+class GeoreferencingError(HamtaError):
+    """A map is required but neither raster carries georeferencing."""
+
+
+class InsufficientMatchesError(HamtaError):
+    """Too few correspondences survived matching or robust estimation to fit the model."""
+
+    def __init__(self, message: str, found: int, needed: int):
+        super().__init__(message)
+        self.found = found
+        self.needed = needed
+
+
+class OutputError(HamtaError, OSError):
+    """An output cannot be written (folder not writable, disk full, ...)."""
+
+
+class RegistrationCanceled(HamtaError):
+    """The caller asked to stop; nothing was written."""

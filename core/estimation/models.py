@@ -1,0 +1,386 @@
+"""Geometric models from target pixels to reference pixels, fitted by least squares.
+
+All models map target pixel coordinates to reference pixel coordinates (corner convention, see
+:mod:`hamta.core.coords`). Each model knows its minimal point count, how to fit itself, apply
+itself, report leave-one-out residuals (RMS_LOO, Goncalves et al. 2009, GRSL 6(2)) and serialise
+itself for ``report.json``.
+
+The names follow the QGIS Georeferencer: similarity = Helmert, affine = polynomial 1, projective,
+polynomial 2 and 3, thin plate spline (exact interpolation, as GDAL's ``-tps``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+import numpy as np
+
+from ..coords import apply_matrix, as_xy
+
+MODEL_CHOICES = ("similarity", "affine", "projective", "polynomial-2", "polynomial-3", "tps")
+MODEL_ALIASES = {"helmert": "similarity", "polynomial-1": "affine", "poly1": "affine",
+                 "poly2": "polynomial-2", "poly3": "polynomial-3", "homography": "projective",
+                 "thin-plate-spline": "tps"}
+MIN_POINTS = {"similarity": 2, "affine": 3, "projective": 4, "polynomial-2": 6, "polynomial-3": 10,
+              "tps": 3}
+
+
+def canonical_model(name: str) -> str:
+    """Validate a model name (QGIS-style aliases accepted) and return its canonical spelling."""
+    key = MODEL_ALIASES.get(name.lower(), name.lower())
+    if key not in MODEL_CHOICES:
+        raise ValueError(f"unknown model {name!r}; choose one of {', '.join(MODEL_CHOICES)}")
+    return key
+
+
+def _loo_from_blocks(design_blocks: np.ndarray, residuals: np.ndarray) -> np.ndarray:
+    """Leave-one-out residual norms of a linear least-squares fit with 2-row blocks per point.
+
+    ``design_blocks`` is (n, 2, p): the rows of the design matrix that predict point i's x and y.
+    The LOO residual is ``(I - H_ii)^-1 e_i`` with ``H_ii`` the 2x2 hat-matrix block.
+    """
+    n, _, p = design_blocks.shape
+    x = design_blocks.reshape(2 * n, p)
+    gram_inv = np.linalg.pinv(x.T @ x)
+    h = np.einsum("nip,pq,njq->nij", design_blocks, gram_inv, design_blocks)
+    eye = np.eye(2)[None] - h
+    out = np.full(n, np.nan)
+    ok = np.abs(np.linalg.det(eye)) > 1e-10
+    out[ok] = np.linalg.norm(np.linalg.solve(eye[ok], residuals[ok][..., None])[..., 0], axis=1)
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class LinearModel:
+    """Similarity, affine or projective map given by a 3x3 matrix (target px -> reference px)."""
+
+    kind: str
+    matrix: np.ndarray
+
+    @property
+    def n_min(self) -> int:
+        return MIN_POINTS[self.kind]
+
+    def apply(self, xy) -> np.ndarray:
+        return apply_matrix(self.matrix, xy)
+
+    def inverse(self) -> "LinearModel":
+        return LinearModel(self.kind, np.linalg.inv(self.matrix))
+
+    def residuals(self, src, dst) -> np.ndarray:
+        return np.linalg.norm(self.apply(src) - as_xy(dst), axis=1)
+
+    @classmethod
+    def fit(cls, kind: str, src, dst) -> "LinearModel":
+        src, dst = as_xy(src), as_xy(dst)
+        if len(src) < MIN_POINTS[kind]:
+            raise ValueError(f"{kind} needs at least {MIN_POINTS[kind]} points, got {len(src)}")
+        if kind == "similarity":
+            a, b, tx, ty = np.linalg.lstsq(_similarity_design(src).reshape(-1, 4), dst.reshape(-1), rcond=None)[0]
+            m = np.array([[a, -b, tx], [b, a, ty], [0, 0, 1.0]])
+        elif kind == "affine":
+            coef = np.linalg.lstsq(np.column_stack([src, np.ones(len(src))]), dst, rcond=None)[0]
+            m = np.vstack([coef.T, [0, 0, 1.0]])
+        elif kind == "projective":
+            m = _fit_homography(src, dst)
+        else:
+            raise ValueError(f"{kind!r} is not a linear model")
+        return cls(kind, m)
+
+    def loo_residuals(self, src, dst) -> np.ndarray:
+        """Leave-one-out residual norms (reference px); exact for similarity/affine,
+        first-order (linearised at the fit) for projective."""
+        src, dst = as_xy(src), as_xy(dst)
+        e = dst - self.apply(src)
+        if len(src) <= self.n_min:
+            return np.full(len(src), np.nan)
+        if self.kind == "similarity":
+            blocks = _similarity_design(src)
+        elif self.kind == "affine":
+            row = np.column_stack([src, np.ones(len(src))])
+            blocks = np.zeros((len(src), 2, 6))
+            blocks[:, 0, :3] = row
+            blocks[:, 1, 3:] = row
+        else:
+            blocks = _homography_jacobian(self.matrix, src)
+        return _loo_from_blocks(blocks, e)
+
+    def to_dict(self) -> dict:
+        return {"type": self.kind, "target_px_to_reference_px": self.matrix.tolist()}
+
+
+def _similarity_design(src: np.ndarray) -> np.ndarray:
+    """(n, 2, 4) design blocks for x' = a x - b y + tx, y' = b x + a y + ty."""
+    n = len(src)
+    d = np.zeros((n, 2, 4))
+    d[:, 0, 0], d[:, 0, 1], d[:, 0, 2] = src[:, 0], -src[:, 1], 1
+    d[:, 1, 0], d[:, 1, 1], d[:, 1, 3] = src[:, 1], src[:, 0], 1
+    return d
+
+
+def _normaliser(xy: np.ndarray) -> np.ndarray:
+    """Hartley normalisation: centroid to the origin, mean distance sqrt(2)."""
+    c = xy.mean(axis=0)
+    d = np.sqrt(((xy - c) ** 2).sum(axis=1)).mean()
+    s = np.sqrt(2) / d if d > 0 else 1.0
+    return np.array([[s, 0, -s * c[0]], [0, s, -s * c[1]], [0, 0, 1.0]])
+
+
+def _fit_homography(src: np.ndarray, dst: np.ndarray) -> np.ndarray:
+    """Normalised DLT, then Gauss-Newton on the geometric (reference-pixel) error."""
+    ts, td = _normaliser(src), _normaliser(dst)
+    a, b = apply_matrix(ts, src), apply_matrix(td, dst)
+    n = len(a)
+    rows = np.zeros((2 * n, 9))
+    rows[0::2, 0:2], rows[0::2, 2] = a, 1
+    rows[0::2, 6:8], rows[0::2, 8] = -a * b[:, :1], -b[:, 0]
+    rows[1::2, 3:5], rows[1::2, 5] = a, 1
+    rows[1::2, 6:8], rows[1::2, 8] = -a * b[:, 1:], -b[:, 1]
+    h = np.linalg.svd(rows)[2][-1].reshape(3, 3)
+    m = np.linalg.inv(td) @ h @ ts
+    m = m / m[2, 2]
+    for _ in range(5):
+        jac = _homography_jacobian(m, src).reshape(-1, 8)
+        e = (dst - apply_matrix(m, src)).reshape(-1)
+        step = np.linalg.lstsq(jac, e, rcond=None)[0]
+        m = m + np.append(step, 0.0).reshape(3, 3)
+        if np.abs(step).max() < 1e-12:
+            break
+    return m / m[2, 2]
+
+
+def _homography_jacobian(m: np.ndarray, src: np.ndarray) -> np.ndarray:
+    """(n, 2, 8) derivatives of the mapped points w.r.t. the 8 free entries (h33 = 1)."""
+    x, y = src[:, 0], src[:, 1]
+    w = m[2, 0] * x + m[2, 1] * y + m[2, 2]
+    u = (m[0, 0] * x + m[0, 1] * y + m[0, 2]) / w
+    v = (m[1, 0] * x + m[1, 1] * y + m[1, 2]) / w
+    j = np.zeros((len(src), 2, 8))
+    j[:, 0, 0], j[:, 0, 1], j[:, 0, 2] = x / w, y / w, 1 / w
+    j[:, 1, 3], j[:, 1, 4], j[:, 1, 5] = x / w, y / w, 1 / w
+    j[:, 0, 6], j[:, 0, 7] = -u * x / w, -u * y / w
+    j[:, 1, 6], j[:, 1, 7] = -v * x / w, -v * y / w
+    return j
+
+
+POLY_TERMS = ("1", "u", "v", "u^2", "u*v", "v^2", "u^3", "u^2*v", "u*v^2", "v^3")
+
+
+@dataclass(frozen=True, eq=False)
+class PolynomialModel:
+    """Polynomial of order 2 or 3 in normalised target coordinates ``u = (x - cx) / s``,
+    ``v = (y - cy) / s``; one coefficient vector per output axis (terms in ``POLY_TERMS`` order)."""
+
+    order: int
+    center: np.ndarray
+    scale: float
+    coef: np.ndarray  # (n_terms, 2)
+
+    kind = property(lambda self: f"polynomial-{self.order}")
+    matrix = None
+
+    @property
+    def n_min(self) -> int:
+        return MIN_POINTS[self.kind]
+
+    def _design(self, xy) -> np.ndarray:
+        return _poly_design((as_xy(xy) - self.center) / self.scale, self.order)
+
+    def apply(self, xy) -> np.ndarray:
+        return self._design(xy) @ self.coef
+
+    def residuals(self, src, dst) -> np.ndarray:
+        return np.linalg.norm(self.apply(src) - as_xy(dst), axis=1)
+
+    @classmethod
+    def fit(cls, order: int, src, dst) -> "PolynomialModel":
+        src, dst = as_xy(src), as_xy(dst)
+        need = MIN_POINTS[f"polynomial-{order}"]
+        if len(src) < need:
+            raise ValueError(f"polynomial-{order} needs at least {need} points, got {len(src)}")
+        center = src.mean(axis=0)
+        scale = float(np.abs(src - center).max()) or 1.0
+        coef = np.linalg.lstsq(_poly_design((src - center) / scale, order), dst, rcond=None)[0]
+        return cls(order, center, scale, coef)
+
+    def loo_residuals(self, src, dst) -> np.ndarray:
+        src, dst = as_xy(src), as_xy(dst)
+        if len(src) <= self.n_min:
+            return np.full(len(src), np.nan)
+        a = self._design(src)
+        h = np.einsum("ij,jk,ik->i", a, np.linalg.pinv(a.T @ a), a)
+        e = dst - a @ self.coef
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = np.linalg.norm(e, axis=1) / (1 - h)
+        return np.where(1 - h > 1e-10, out, np.nan)
+
+    def to_dict(self) -> dict:
+        return {"type": self.kind, "target_px_to_reference_px": None,
+                "polynomial": {"order": self.order, "center": self.center.tolist(), "scale": self.scale,
+                               "terms": list(POLY_TERMS[: self.coef.shape[0]]),
+                               "coefficients_x": self.coef[:, 0].tolist(),
+                               "coefficients_y": self.coef[:, 1].tolist()}}
+
+
+def _poly_design(uv: np.ndarray, order: int) -> np.ndarray:
+    u, v = uv[:, 0], uv[:, 1]
+    cols = [np.ones_like(u), u, v]
+    if order >= 2:
+        cols += [u * u, u * v, v * v]
+    if order >= 3:
+        cols += [u ** 3, u * u * v, u * v * v, v ** 3]
+    return np.column_stack(cols)
+
+
+def _tps_kernel(r2: np.ndarray) -> np.ndarray:
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(r2 > 0, r2 * np.log(r2), 0.0)
+
+
+@dataclass(frozen=True, eq=False)
+class ThinPlateSplineModel:
+    """Thin plate spline through (or, with ``smoothing`` > 0, near) its control points.
+
+    ``f(p) = a0 + a1 u + a2 v + sum_i w_i U(|q - q_i|^2)`` with ``U(r2) = r2 log r2`` and
+    ``q = (p - center) / scale``; a TPS is unchanged by this normalisation, which only conditions
+    the solve. ``smoothing`` = 0 interpolates the points exactly (GDAL's ``-tps``); a positive
+    value is the penalty weight of a smoothing spline (Wahba 1990), which keeps match noise out of
+    the surface. Any such spline is reproduced exactly by an interpolating TPS through its own
+    values at the control points, which is how GDAL is handed the model.
+    """
+
+    control: np.ndarray  # (n, 2) target px
+    center: np.ndarray
+    scale: float
+    weights: np.ndarray  # (n, 2)
+    affine: np.ndarray  # (3, 2)
+    smoothing: float = 0.0
+
+    kind = "tps"
+    matrix = None
+    n_min = MIN_POINTS["tps"]
+
+    def _q(self, xy) -> np.ndarray:
+        return (as_xy(xy) - self.center) / self.scale
+
+    def apply(self, xy, chunk: int = 4096) -> np.ndarray:
+        q = self._q(xy)
+        c = (self.control - self.center) / self.scale
+        out = np.empty_like(q)
+        for i in range(0, len(q), chunk):
+            part = q[i:i + chunk]
+            r2 = ((part[:, None, :] - c[None, :, :]) ** 2).sum(axis=2)
+            out[i:i + chunk] = _tps_kernel(r2) @ self.weights + np.column_stack([np.ones(len(part)), part]) @ self.affine
+        return out
+
+    def residuals(self, src, dst) -> np.ndarray:
+        return np.linalg.norm(self.apply(src) - as_xy(dst), axis=1)
+
+    @staticmethod
+    def _system(q: np.ndarray, smoothing: float) -> np.ndarray:
+        n = len(q)
+        k = _tps_kernel(((q[:, None, :] - q[None, :, :]) ** 2).sum(axis=2)) + smoothing * np.eye(n)
+        p = np.column_stack([np.ones(n), q])
+        return np.block([[k, p], [p.T, np.zeros((3, 3))]])
+
+    @classmethod
+    def fit(cls, src, dst, smoothing="auto", center=None, scale=None) -> "ThinPlateSplineModel":
+        """Fit through ``src`` -> ``dst``; ``smoothing='auto'`` picks the penalty with the smallest
+        leave-one-out error over a logarithmic grid (0 = exact interpolation is a candidate).
+        ``center``/``scale`` fix the normalisation (the penalty is defined in normalised units)."""
+        src, dst = as_xy(src), as_xy(dst)
+        if len(src) < MIN_POINTS["tps"]:
+            raise ValueError(f"tps needs at least 3 points, got {len(src)}")
+        center = src.mean(axis=0) if center is None else np.asarray(center, float)
+        scale = (float(np.abs(src - center).max()) or 1.0) if scale is None else float(scale)
+        q = (src - center) / scale
+        rhs = np.vstack([dst, np.zeros((3, 2))])
+        if smoothing == "auto":
+            candidates = [0.0] + list(10.0 ** np.arange(-7.0, 3.5, 0.5))
+            fits = [cls._solve(q, rhs, lam) for lam in candidates]
+            best = int(np.argmin([np.sqrt(np.nanmean(f[1] ** 2)) for f in fits]))
+            sol, smoothing = fits[best][0], candidates[best]
+        else:
+            sol = cls._solve(q, rhs, float(smoothing))[0]
+        return cls(src.copy(), center, scale, sol[:-3], sol[-3:], float(smoothing))
+
+    @classmethod
+    def _solve(cls, q, rhs, smoothing):
+        """Coefficients and leave-one-out residual norms for one penalty weight."""
+        n = len(q)
+        system = cls._system(q, smoothing)
+        try:
+            inv = np.linalg.inv(system)
+        except np.linalg.LinAlgError:  # duplicated or collinear control points
+            inv = np.linalg.pinv(system)
+        sol = inv @ rhs
+        if smoothing == 0:
+            loo = sol[:n] / np.diag(inv)[:n, None]  # Rippa (1999)
+        else:
+            # Linear smoother S (fitted = S y); the leave-one-out lemma gives e_i / (1 - S_ii).
+            k = _tps_kernel(((q[:, None, :] - q[None, :, :]) ** 2).sum(axis=2))
+            basis = np.hstack([k, np.column_stack([np.ones(n), q])])
+            s_diag = np.einsum("ij,ji->i", basis, inv[:, :n])
+            loo = (smoothing * sol[:n]) / (1 - s_diag)[:, None]
+        return sol, np.linalg.norm(loo, axis=1)
+
+    def loo_residuals(self, src=None, dst=None) -> np.ndarray:
+        """Exact leave-one-out errors at the control points (Rippa 1999; Wahba's lemma when smoothing)."""
+        q = self._q(self.control)
+        dst = self.apply(self.control) + (self.smoothing * self.weights if self.smoothing else 0.0)
+        return self._solve(q, np.vstack([dst, np.zeros((3, 2))]), self.smoothing)[1]
+
+    def to_dict(self) -> dict:
+        return {"type": "tps", "target_px_to_reference_px": None,
+                "tps": {"kernel": "U(r2) = r2*log(r2), q = (p - center)/scale", "smoothing": self.smoothing,
+                        "center": self.center.tolist(), "scale": self.scale,
+                        "control_points_target_px": self.control.tolist(),
+                        "weights": self.weights.tolist(), "affine": self.affine.tolist()}}
+
+
+def fit_model(kind: str, src, dst):
+    """Least-squares fit of the model named ``kind`` (see :data:`MODEL_CHOICES`)."""
+    kind = canonical_model(kind)
+    if kind in ("similarity", "affine", "projective"):
+        return LinearModel.fit(kind, src, dst)
+    if kind == "tps":
+        return ThinPlateSplineModel.fit(src, dst)
+    return PolynomialModel.fit(int(kind[-1]), src, dst)
+
+
+def model_from_dict(d: dict, reference_transform=None, reference_crs_wkt=None):
+    """Rebuild a model from its ``report.json`` form.
+
+    Models fitted in the target's CRS frame (``"frame": "target_crs"``) also need the reference's
+    geotransform (rasterio ``Affine``) and CRS (WKT).
+    """
+    if d.get("frame") == "target_crs":
+        from affine import Affine
+
+        from .framed import CrsFrame, FramedModel
+
+        inner = dict(d, target_px_to_reference_px=d["target_px_to_frame_px"])
+        inner.pop("frame")
+        frame = CrsFrame(Affine.from_gdal(*d["frame_transform"]), d["frame_crs"], reference_transform,
+                         reference_crs_wkt)
+        return FramedModel(model_from_dict(inner), frame)
+    kind = canonical_model(d["type"])
+    if kind in ("similarity", "affine", "projective"):
+        return LinearModel(kind, np.asarray(d["target_px_to_reference_px"], float))
+    if kind == "tps":
+        t = d["tps"]
+        return ThinPlateSplineModel(np.asarray(t["control_points_target_px"], float), np.asarray(t["center"], float),
+                                    float(t["scale"]), np.asarray(t["weights"], float), np.asarray(t["affine"], float),
+                                    float(t.get("smoothing", 0.0)))
+    p = d["polynomial"]
+    coef = np.column_stack([p["coefficients_x"], p["coefficients_y"]])
+    return PolynomialModel(int(p["order"]), np.asarray(p["center"], float), float(p["scale"]), coef)
+
+
+def local_jacobian(model, xy, step: float = 0.5) -> np.ndarray:
+    """(N, 2, 2) derivative of ``model.apply`` at ``xy`` by central differences."""
+    xy = as_xy(xy)
+    dx = np.array([step, 0.0])
+    dy = np.array([0.0, step])
+    jx = (model.apply(xy + dx) - model.apply(xy - dx)) / (2 * step)
+    jy = (model.apply(xy + dy) - model.apply(xy - dy)) / (2 * step)
+    return np.stack([jx, jy], axis=2)
+

@@ -1,0 +1,244 @@
+"""Raster access through rasterio: metadata, band choice, masks and bounded-memory reads.
+
+This is the only module that opens input rasters. Reads are always of a window and, when a pixel
+budget asks for it, decimated by GDAL (which uses overviews when the file has them), so memory is
+bounded by the requested output size and not by the file size. Pixel coordinates follow
+:mod:`hamta.core.coords` (corner origin, x = column, y = row).
+"""
+from __future__ import annotations
+
+import math
+import os
+import warnings
+from dataclasses import dataclass
+from typing import Optional, Tuple
+
+import numpy as np
+import rasterio
+from affine import Affine
+from rasterio.enums import ColorInterp, Resampling
+from rasterio.errors import NotGeoreferencedWarning, RasterioIOError
+from rasterio.windows import Window
+
+from ..errors import InputError
+
+SUPPORTED_DTYPES = ("uint8", "int8", "uint16", "int16", "uint32", "int32", "float32", "float64",
+                    "complex64", "complex128", "complex_int16")
+STRIP_PIXELS = 4_000_000  # full-resolution pixels held at once when complex data is decimated
+
+
+@dataclass(frozen=True)
+class RasterInfo:
+    """What Hamta needs to know about an input raster, read once without loading pixels.
+
+    ``transform`` maps pixel corner coordinates to map coordinates. ``georeferenced`` tells
+    whether it is real (from a geotransform, or an affine fit of the file's GCPs when
+    ``georef_source == 'gcps'``) or the identity GDAL reports for plain images.
+    """
+
+    path: str
+    width: int
+    height: int
+    count: int
+    dtype: str
+    crs: Optional[rasterio.crs.CRS]
+    transform: Affine
+    georef_source: str  # 'geotransform', 'gcps' or 'none'
+    nodata: Optional[float]
+    colorinterp: Tuple[str, ...]
+    overview_factors: Tuple[int, ...]
+
+    @property
+    def georeferenced(self) -> bool:
+        return self.georef_source != "none"
+
+    @property
+    def is_complex(self) -> bool:
+        return self.dtype.startswith("complex")
+
+    @property
+    def pixel_size(self) -> float:
+        """Map units per pixel (geometric mean of the two axes); 1 when not georeferenced."""
+        return math.sqrt(abs(self.transform.determinant))
+
+    def window(self) -> Window:
+        return Window(0, 0, self.width, self.height)
+
+
+def open_raster(path, role: str = "input") -> RasterInfo:
+    """Read the metadata of ``path``; raise :class:`InputError` naming the file on any problem.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Anything GDAL opens (a file, a VRT, a ``/vsi...`` path).
+    role : str
+        'target' or 'reference', used in error messages.
+    """
+    path = os.fspath(path)
+    if not path.startswith("/vsi") and not os.path.exists(path) and ":" not in os.path.basename(path):
+        raise InputError(f"The {role} raster '{path}' does not exist.")
+    if os.path.isdir(path):
+        raise InputError(f"The {role} raster '{path}' is a folder, not a raster file.")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", NotGeoreferencedWarning)
+            with rasterio.open(path) as ds:
+                return _describe(ds, path, role)
+    except RasterioIOError as exc:
+        raise InputError(f"The {role} raster '{path}' is not a raster GDAL can read ({exc}).") from None
+
+
+def _describe(ds, path: str, role: str) -> RasterInfo:
+    if ds.count < 1 or ds.width < 1 or ds.height < 1:
+        raise InputError(f"The {role} raster '{path}' has no pixels (bands={ds.count}, "
+                         f"size={ds.width}x{ds.height}).")
+    dtype = ds.dtypes[0]
+    if dtype not in SUPPORTED_DTYPES:
+        raise InputError(f"The {role} raster '{path}' has pixel type {dtype}, which Hamta does not "
+                         f"support (supported: {', '.join(SUPPORTED_DTYPES)}).")
+    transform, source = ds.transform, "geotransform"
+    if transform == Affine.identity() and ds.crs is None:
+        source = "none"
+        gcps, gcp_crs = ds.gcps
+        if len(gcps) >= 3:
+            transform, source = rasterio.transform.from_gcps(gcps), "gcps"
+            crs = gcp_crs
+        else:
+            crs = None
+    else:
+        crs = ds.crs
+    if transform.determinant == 0:
+        raise InputError(f"The {role} raster '{path}' has a degenerate geotransform {transform}.")
+    return RasterInfo(
+        path=path, width=ds.width, height=ds.height, count=ds.count, dtype=dtype,
+        crs=crs if crs else None, transform=transform, georef_source=source, nodata=ds.nodata,
+        colorinterp=tuple(ci.name for ci in ds.colorinterp),
+        overview_factors=tuple(ds.overviews(1)),
+    )
+
+
+def resolve_bands(info: RasterInfo, band: Optional[int]) -> Tuple[int, ...]:
+    """The 1-based band indexes to read for ``band``; ``None`` means luminance of RGB or band 1."""
+    if band is None:
+        rgb = (ColorInterp.red.name, ColorInterp.green.name, ColorInterp.blue.name)
+        if info.count >= 3 and info.colorinterp[:3] == rgb:
+            return (1, 2, 3)
+        return (1,)
+    if not 1 <= band <= info.count:
+        raise InputError(f"Band {band} does not exist in '{info.path}', which has {info.count} "
+                         f"band(s).")
+    return (band,)
+
+
+LUMINANCE = np.array([0.299, 0.587, 0.114], dtype=np.float32)
+
+
+def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window] = None,
+               out_shape: Optional[Tuple[int, int]] = None, dataset=None) -> Tuple[np.ndarray, np.ndarray]:
+    """Read one grey image and its validity mask from a window, optionally decimated.
+
+    Parameters
+    ----------
+    info : RasterInfo
+    bands : tuple of int
+        One band, or three RGB bands combined to luminance.
+    window : Window, optional
+        Window in whole full-resolution pixels; the whole raster by default. Parts outside the
+        raster read as invalid (through GDAL's slower boundless path).
+    dataset : open rasterio dataset of ``info.path``, optional
+        Saves re-opening the file when many small windows are read (see :func:`open_dataset`).
+    out_shape : (rows, cols), optional
+        Size of the returned arrays; pixel (x, y) of the output covers the full-resolution area
+        ``window.col_off + x * window.width / cols`` (corner convention, so no half-pixel shift).
+
+    Returns
+    -------
+    image : (rows, cols) float32
+        Complex data is returned as amplitude; invalid pixels hold 0.
+    valid : (rows, cols) bool
+        False where the raster is nodata, masked, NaN or outside the window's raster.
+    """
+    window = window or info.window()
+    shape = out_shape or (int(window.height), int(window.width))
+    decimating = shape[0] < window.height or shape[1] < window.width
+    inside = (window.col_off >= 0 and window.row_off >= 0 and window.col_off + window.width <= info.width
+              and window.row_off + window.height <= info.height)
+    full_shape = (len(bands),) + tuple(shape)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NotGeoreferencedWarning)
+        with (_borrowed(dataset) if dataset is not None else rasterio.open(info.path)) as ds:
+            if info.is_complex and decimating:
+                data = _read_amplitude_by_strips(ds, bands, window, shape, not inside)
+            else:
+                resampling = Resampling.average if decimating else Resampling.nearest
+                data = ds.read(bands, window=window, out_shape=full_shape, resampling=resampling,
+                               boundless=not inside, fill_value=0)
+                data = np.abs(data) if info.is_complex else data
+            masks = ds.read_masks(bands, window=window, out_shape=full_shape,
+                                  resampling=Resampling.nearest, boundless=not inside)
+    data = data.astype(np.float32, copy=False)
+    valid = np.all(masks > 0, axis=0) & np.all(np.isfinite(data), axis=0)
+    image = np.tensordot(LUMINANCE, data, axes=1) if len(bands) == 3 else data[0]
+    image = np.where(valid, image, 0).astype(np.float32, copy=False)
+    return image, valid
+
+
+class _borrowed:
+    """Context manager that lends an already open dataset without closing it."""
+
+    def __init__(self, ds):
+        self.ds = ds
+
+    def __enter__(self):
+        return self.ds
+
+    def __exit__(self, *exc):
+        return False
+
+
+def open_dataset(info: RasterInfo):
+    """Open ``info.path`` for repeated :func:`read_image` calls (use as a context manager)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NotGeoreferencedWarning)
+        return rasterio.open(info.path)
+
+
+def _read_amplitude_by_strips(ds, bands, window, out_shape, boundless):
+    """Area-average the amplitude (not the complex values) of each output cell, strip by strip."""
+    rows, cols = out_shape
+    height, width = int(window.height), int(window.width)
+    w_rows = _area_weights(height, rows)
+    w_cols = _area_weights(width, cols)
+    out = np.zeros((len(bands), rows, cols), np.float64)
+    step = max(1, STRIP_PIXELS // max(width, 1))
+    for r0 in range(0, height, step):
+        r1 = min(height, r0 + step)
+        strip = Window(window.col_off, window.row_off + r0, width, r1 - r0)
+        amp = np.abs(ds.read(bands, window=strip, boundless=boundless, fill_value=0))
+        for i in range(len(bands)):
+            out[i] += w_rows[:, r0:r1] @ (w_cols @ amp[i].astype(np.float64).T).T
+    return out.astype(np.float32)
+
+
+def _area_weights(n_src: int, n_out: int):
+    """Sparse (n_out, n_src) matrix averaging source cells over each output cell's footprint."""
+    from scipy import sparse
+
+    edges = np.arange(n_out + 1) * (n_src / n_out)
+    rows, cols, vals = [], [], []
+    for i in range(n_out):
+        lo, hi = edges[i], edges[i + 1]
+        for j in range(int(np.floor(lo)), min(n_src, int(np.ceil(hi)))):
+            overlap = min(hi, j + 1) - max(lo, j)
+            if overlap > 0:
+                rows.append(i)
+                cols.append(j)
+                vals.append(overlap / (hi - lo))
+    return sparse.csr_matrix((vals, (rows, cols)), shape=(n_out, n_src))
+
+
+def budget_shape(width: float, height: float, max_pixels: int) -> Tuple[Tuple[int, int], float]:
+    """Output (rows, cols) of a ``width x height`` window within ``max_pixels``, and the factor."""
+    factor = max(1.0, math.sqrt(width * height / float(max_pixels)))
+    return (max(1, int(round(height / factor))), max(1, int(round(width / factor)))), factor

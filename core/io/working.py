@@ -1,0 +1,258 @@
+"""Overlap planning and the working images every matching method sees.
+
+A registration never matches full files: each raster is read once at a *working* resolution
+bounded by a pixel budget. When both rasters are georeferenced, the target's georeferencing is a
+prior: only the overlap is read and the target is resampled onto the reference's working grid, so
+methods see both images in a common orientation and scale. Otherwise each raster is read whole
+within the budget and the method searches the full images.
+
+Every working image carries a ``to_source`` map from working pixels to full-resolution pixels of
+its raster (both in the corner convention of :mod:`hamta.core.coords`), so correspondences found
+in working pixels become target/reference pixel pairs exactly.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Optional, Tuple
+
+import numpy as np
+from affine import Affine
+from pyproj import Transformer
+from rasterio.crs import CRS
+from rasterio.warp import Resampling, reproject
+from rasterio.windows import Window
+from shapely.geometry import Polygon, box
+from shapely.ops import transform as shapely_transform
+
+from ..coords import as_xy, compose, map_to_pixel, pixel_to_map
+from ..errors import GeoreferencingError, InputError, NoOverlapError
+from .raster import RasterInfo, budget_shape, read_image
+
+TARGET_GEOREF_CHOICES = ("auto", "use", "ignore")
+# Any projected CRS lets GDAL resample between two grids that share an unnamed CRS.
+_PLACEHOLDER_CRS = CRS.from_epsg(3857)
+
+
+@dataclass(frozen=True)
+class ScaledWindow:
+    """Working pixels -> source pixels of a decimated window read: ``src = off + xy * scale``."""
+
+    col_off: float
+    row_off: float
+    sx: float
+    sy: float
+
+    def forward(self, xy) -> np.ndarray:
+        xy = as_xy(xy)
+        return np.column_stack([self.col_off + xy[:, 0] * self.sx, self.row_off + xy[:, 1] * self.sy])
+
+    def inverse(self, xy) -> np.ndarray:
+        xy = as_xy(xy)
+        return np.column_stack([(xy[:, 0] - self.col_off) / self.sx, (xy[:, 1] - self.row_off) / self.sy])
+
+
+@dataclass(frozen=True, eq=False)
+class ReprojectedGrid:
+    """Working pixels of a grid in one CRS -> source pixels of a raster in another CRS."""
+
+    grid_transform: Affine
+    src_transform: Affine
+    to_src_crs: Optional[Transformer]
+    to_grid_crs: Optional[Transformer]
+
+    def forward(self, xy) -> np.ndarray:
+        return map_to_pixel(self.src_transform, _reproject_xy(self.to_src_crs, pixel_to_map(self.grid_transform, xy)))
+
+    def inverse(self, xy) -> np.ndarray:
+        return map_to_pixel(self.grid_transform, _reproject_xy(self.to_grid_crs, pixel_to_map(self.src_transform, xy)))
+
+
+def _reproject_xy(transformer: Optional[Transformer], xy: np.ndarray) -> np.ndarray:
+    if transformer is None:
+        return xy
+    x, y = transformer.transform(xy[:, 0], xy[:, 1])
+    return np.column_stack([x, y])
+
+
+@dataclass(frozen=True, eq=False)
+class WorkingImage:
+    """A grey image at working resolution with its validity mask and its way back to the file.
+
+    ``data`` is float32 in the raster's own units (complex already as amplitude); invalid pixels
+    hold 0. ``source_px_per_working_px`` is the approximate linear decimation factor.
+    """
+
+    data: np.ndarray
+    valid: np.ndarray
+    to_source: object
+    info: RasterInfo
+    bands: Tuple[int, ...]
+    source_px_per_working_px: float
+
+    @property
+    def shape(self) -> Tuple[int, int]:
+        return self.data.shape
+
+
+@dataclass(frozen=True)
+class Plan:
+    """How the working images were chosen.
+
+    ``mode`` is 'georeferenced' (the target's georeferencing is used as a prior and only the
+    overlap is read), 'search' (the target is placed by matching alone) or 'pixel' (the reference
+    has no georeferencing: map coordinates are reference pixels).
+    """
+
+    mode: str
+    reference_window: Window
+    target_window: Window
+    notes: Tuple[str, ...] = field(default=())
+
+
+def prepare_working_images(target: RasterInfo, reference: RasterInfo, *, target_bands, reference_bands,
+                           max_pixels: int, target_georef: str = "auto"):
+    """Plan the overlap and read both working images.
+
+    Returns
+    -------
+    (WorkingImage, WorkingImage, Plan)
+        Target and reference working images (pixels: working space) and the plan.
+    """
+    if target_georef not in TARGET_GEOREF_CHOICES:
+        raise ValueError(f"target_georef must be one of {TARGET_GEOREF_CHOICES}, got {target_georef!r}")
+    prior, notes = _prior_usable(target, reference, target_georef)
+    if prior:
+        return _prepare_with_prior(target, reference, target_bands, reference_bands, max_pixels, notes)
+    mode = "search" if reference.georeferenced else "pixel"
+    tgt = _read_whole(target, target_bands, max_pixels, "target")
+    ref = _read_whole(reference, reference_bands, max_pixels, "reference")
+    return tgt, ref, Plan(mode, reference.window(), target.window(), tuple(notes))
+
+
+def _prior_usable(target: RasterInfo, reference: RasterInfo, choice: str):
+    notes = []
+    if choice == "ignore":
+        return False, ["target georeferencing ignored on request"]
+    problem = None
+    if not target.georeferenced:
+        problem = f"the target raster '{target.path}' has no georeferencing"
+    elif not reference.georeferenced:
+        problem = f"the reference raster '{reference.path}' has no georeferencing"
+    elif (target.crs is None) != (reference.crs is None):
+        problem = "only one of the two rasters has a CRS, so their coordinates cannot be related"
+    if problem is None:
+        return True, notes
+    if choice == "use":
+        raise GeoreferencingError(f"Cannot use the target's georeferencing as a starting point: {problem}.")
+    notes.append(f"searching the whole reference: {problem}")
+    return False, notes
+
+
+def _read_whole(info: RasterInfo, bands, max_pixels: int, role: str) -> WorkingImage:
+    shape, factor = budget_shape(info.width, info.height, max_pixels)
+    data, valid = read_image(info, bands, info.window(), shape)
+    _check_content(data, valid, info, role, "")
+    to_source = ScaledWindow(0.0, 0.0, info.width / shape[1], info.height / shape[0])
+    return WorkingImage(data, valid, to_source, info, bands, factor)
+
+
+def _check_content(data, valid, info: RasterInfo, role: str, where: str) -> None:
+    n_valid = int(valid.sum())
+    if n_valid < 64:
+        raise InputError(f"The {role} raster '{info.path}' has no valid pixels{where} "
+                         f"(all nodata or masked; {n_valid} valid at working resolution).")
+    values = data[valid]
+    if float(values.max()) == float(values.min()):
+        raise InputError(f"The {role} raster '{info.path}' is constant{where} (every valid pixel is "
+                         f"{float(values[0]):g}); there is nothing to match.")
+
+
+def footprint(info: RasterInfo, crs: Optional[CRS], points_per_side: int = 21) -> Polygon:
+    """Outline of a raster in map coordinates of ``crs`` (its own CRS when equal or None)."""
+    t = np.linspace(0.0, 1.0, points_per_side)[:-1]
+    w, h = info.width, info.height
+    edge = np.concatenate([
+        np.column_stack([t * w, np.zeros_like(t)]), np.column_stack([np.full_like(t, w), t * h]),
+        np.column_stack([w - t * w, np.full_like(t, h)]), np.column_stack([np.zeros_like(t), h - t * h]),
+    ])
+    xy = _reproject_xy(_transformer(info.crs, crs), pixel_to_map(info.transform, edge))
+    poly = Polygon(xy[np.all(np.isfinite(xy), axis=1)])
+    return poly if poly.is_valid else poly.buffer(0)
+
+
+def _transformer(src: Optional[CRS], dst: Optional[CRS]) -> Optional[Transformer]:
+    if src is None or dst is None or src == dst:
+        return None
+    return Transformer.from_crs(src, dst, always_xy=True)
+
+
+def _window_of(polygon: Polygon, info: RasterInfo, crs: Optional[CRS], margin_px: float) -> Window:
+    """Whole-pixel window of ``info`` covering ``polygon`` (map coordinates in ``crs``) plus a margin."""
+    ring = _reproject_xy(_transformer(crs, info.crs), np.asarray(polygon.exterior.coords))
+    px = map_to_pixel(info.transform, ring)
+    c0, r0 = np.floor(px.min(axis=0) - margin_px)
+    c1, r1 = np.ceil(px.max(axis=0) + margin_px)
+    c0, r0 = max(0, int(c0)), max(0, int(r0))
+    c1, r1 = min(info.width, int(c1)), min(info.height, int(r1))
+    return Window(c0, r0, max(1, c1 - c0), max(1, r1 - r0))
+
+
+def _prepare_with_prior(target, reference, target_bands, reference_bands, max_pixels, notes):
+    ref_poly = footprint(reference, reference.crs)
+    tgt_poly = footprint(target, reference.crs)
+    overlap = ref_poly.intersection(tgt_poly)
+    if overlap.is_empty or overlap.area <= 0:
+        raise NoOverlapError(
+            f"The target raster '{target.path}' and the reference raster '{reference.path}' do not "
+            "overlap according to their georeferencing. If the target's georeferencing is wrong, "
+            "ignore it (CLI: --target-georef ignore) to search the whole reference.")
+    overlap_box = box(*overlap.bounds)
+    ref_window = _window_of(overlap_box, reference, reference.crs, 64 + 0.05 * max(reference.width, reference.height))
+    tgt_window = _window_of(overlap_box, target, reference.crs, 64 + 0.05 * max(target.width, target.height))
+
+    gsd_ref = reference.pixel_size
+    gsd_tgt = math.sqrt(tgt_poly.area / (target.width * target.height))
+    gsd = max(gsd_ref, gsd_tgt)
+    n_px = ref_window.width * ref_window.height * (gsd_ref / gsd) ** 2
+    gsd *= max(1.0, math.sqrt(n_px / max_pixels))
+    factor = gsd / gsd_ref
+    rows = max(1, int(round(ref_window.height / factor)))
+    cols = max(1, int(round(ref_window.width / factor)))
+    grid = ScaledWindow(ref_window.col_off, ref_window.row_off, ref_window.width / cols, ref_window.height / rows)
+    grid_transform = compose(reference.transform, Affine.translation(grid.col_off, grid.row_off),
+                             Affine.scale(grid.sx, grid.sy))
+
+    ref_data, ref_valid = read_image(reference, reference_bands, ref_window, (rows, cols))
+    _check_content(ref_data, ref_valid, reference, "reference", " where it overlaps the target")
+    ref_img = WorkingImage(ref_data, ref_valid, grid, reference, reference_bands, factor)
+
+    tgt_factor = max(1.0, gsd / gsd_tgt)
+    t_shape = (max(1, int(round(tgt_window.height / tgt_factor))), max(1, int(round(tgt_window.width / tgt_factor))))
+    t_data, t_valid = read_image(target, target_bands, tgt_window, t_shape)
+    _check_content(t_data, t_valid, target, "target", " where it overlaps the reference")
+    t_transform = compose(target.transform, Affine.translation(tgt_window.col_off, tgt_window.row_off),
+                          Affine.scale(tgt_window.width / t_shape[1], tgt_window.height / t_shape[0]))
+    data, valid = _resample_onto(t_data, t_valid, t_transform, target.crs, grid_transform, reference.crs, (rows, cols))
+    _check_content(data, valid, target, "target", " where it overlaps the reference")
+    to_source = ReprojectedGrid(grid_transform, target.transform,
+                                _transformer(reference.crs, target.crs), _transformer(target.crs, reference.crs))
+    tgt_img = WorkingImage(data, valid, to_source, target, target_bands, tgt_factor)
+    plan = Plan("georeferenced", ref_window, tgt_window, tuple(notes))
+    return tgt_img, ref_img, plan
+
+
+def _resample_onto(data, valid, src_transform, src_crs, dst_transform, dst_crs, shape):
+    """Resample a float image and its mask from one grid onto another (bilinear / nearest)."""
+    src_crs = src_crs or _PLACEHOLDER_CRS
+    dst_crs = dst_crs or _PLACEHOLDER_CRS
+    src = np.where(valid, data, np.nan).astype(np.float32)
+    out = np.full(shape, np.nan, np.float32)
+    reproject(src, out, src_transform=src_transform, src_crs=src_crs, dst_transform=dst_transform,
+              dst_crs=dst_crs, src_nodata=np.nan, dst_nodata=np.nan, resampling=Resampling.bilinear)
+    mask = np.zeros(shape, np.uint8)
+    reproject(valid.astype(np.uint8), mask, src_transform=src_transform, src_crs=src_crs,
+              dst_transform=dst_transform, dst_crs=dst_crs, src_nodata=None, dst_nodata=0,
+              resampling=Resampling.nearest)
+    ok = np.isfinite(out) & (mask > 0)
+    return np.where(ok, out, 0).astype(np.float32), ok

@@ -1,0 +1,119 @@
+"""The method registry: every matching method Hamta offers, by stable name.
+
+A method is a name, a frozen parameter dataclass with documented defaults, and a function
+``match(target, reference, params, monitor) -> Matches`` from two working images
+(:class:`hamta.core.io.working.WorkingImage`) to correspondences in working pixels. Front ends
+(CLI, Processing, benchmark) list and build methods only through this registry.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, Mapping, Optional
+
+
+@dataclass(frozen=True)
+class Method:
+    """A registered matching method.
+
+    Attributes
+    ----------
+    name : str
+        Stable id used by the CLI, Processing and reports.
+    title : str
+        One-line human name.
+    summary : str
+        What it does and when to use it.
+    citation : str
+        The published source (or 'baseline').
+    params_type : type
+        Frozen dataclass of the method's parameters; every field has a default and a ``help``.
+    match : callable
+        ``match(target, reference, params, monitor) -> Matches``.
+    default_model : str
+        Model used when the caller does not choose one.
+    kind : str
+        'method' for published methods, 'baseline' for the comparisons they are measured against.
+    """
+
+    name: str
+    title: str
+    summary: str
+    citation: str
+    params_type: type
+    match: Callable
+    default_model: str = "affine"
+    kind: str = "method"
+
+    def make_params(self, values: Optional[Mapping[str, Any]] = None):
+        """Build the parameter dataclass from ``values`` (strings are converted); unknown keys fail."""
+        values = dict(values or {})
+        fields = {f.name: f for f in dataclasses.fields(self.params_type)}
+        unknown = sorted(set(values) - set(fields))
+        if unknown:
+            raise ValueError(f"method {self.name!r} has no parameter(s) {', '.join(unknown)}; "
+                             f"known: {', '.join(fields)}")
+        converted = {k: _convert(fields[k], v) for k, v in values.items()}
+        return self.params_type(**converted)
+
+
+def _convert(field: dataclasses.Field, value):
+    if not isinstance(value, str):
+        return value
+    kind = type(field.default)
+    if kind is bool:
+        if value.lower() in ("1", "true", "yes", "on"):
+            return True
+        if value.lower() in ("0", "false", "no", "off"):
+            return False
+        raise ValueError(f"parameter {field.name} expects true/false, got {value!r}")
+    if kind in (int, float):
+        return kind(value)
+    return value
+
+
+def param(default, help: str, **limits):
+    """A dataclass field with a documented default (``help``) and optional ``minimum``/``maximum``/``choices``."""
+    return dataclasses.field(default=default, metadata={"help": help, **limits})
+
+
+def validate(params) -> None:
+    """Check every field of a parameter dataclass against its declared limits."""
+    for f in dataclasses.fields(params):
+        v = getattr(params, f.name)
+        lo, hi, choices = f.metadata.get("minimum"), f.metadata.get("maximum"), f.metadata.get("choices")
+        if lo is not None and v < lo:
+            raise ValueError(f"parameter {f.name} must be >= {lo}, got {v}")
+        if hi is not None and v > hi:
+            raise ValueError(f"parameter {f.name} must be <= {hi}, got {v}")
+        if choices is not None and v not in choices:
+            raise ValueError(f"parameter {f.name} must be one of {choices}, got {v!r}")
+
+
+_REGISTRY: Dict[str, Method] = {}
+
+
+def register_method(method: Method) -> Method:
+    if method.name in _REGISTRY:
+        raise ValueError(f"method {method.name!r} is already registered")
+    _REGISTRY[method.name] = method
+    return method
+
+
+def get_method(name: str) -> Method:
+    """The method called ``name``; a ``ValueError`` lists the valid names otherwise."""
+    _load_builtin()
+    try:
+        return _REGISTRY[name]
+    except KeyError:
+        raise ValueError(f"unknown method {name!r}; available: {', '.join(_REGISTRY)}") from None
+
+
+def all_methods() -> Dict[str, Method]:
+    _load_builtin()
+    return dict(_REGISTRY)
+
+
+def _load_builtin() -> None:
+    if not _REGISTRY:
+        from . import sift  # noqa: F401  (registers itself)

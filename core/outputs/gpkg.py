@@ -1,0 +1,102 @@
+"""A GeoPackage point layer of GCPs, written with the standard library's sqlite3.
+
+No allowed dependency writes vectors (rasterio is raster-only; Fiona would bring a second GDAL),
+and a point layer needs only the core of the OGC GeoPackage 1.2 encoding (OGC 12-128r15):
+the three metadata tables and standard GeoPackage geometry blobs (header + little-endian WKB).
+"""
+from __future__ import annotations
+
+import sqlite3
+import struct
+
+import numpy as np
+
+from .points import destination_coordinates
+
+TABLE = "gcps"
+_APPLICATION_ID = 0x47504B47  # "GPKG"
+_USER_VERSION = 10200
+_FIELDS = [("gcp_id", "INTEGER"), ("enabled", "BOOLEAN"), ("target_x", "REAL"), ("target_y", "REAL"),
+           ("reference_x", "REAL"), ("reference_y", "REAL"), ("map_x", "REAL"), ("map_y", "REAL"),
+           ("residual_px", "REAL"), ("residual_x_px", "REAL"), ("residual_y_px", "REAL"), ("score", "REAL")]
+
+
+def _srs(result):
+    """(srs_id, name, organization, code, definition) for the layer's CRS."""
+    crs = None if result.pixel_mode else result.reference.crs
+    if crs is None:
+        return -1, "Undefined cartesian SRS", "NONE", -1, "undefined"
+    from pyproj import CRS
+
+    pcrs = CRS.from_user_input(crs.to_wkt())
+    definition = pcrs.to_wkt(version="WKT1_GDAL") or pcrs.to_wkt()
+    epsg = pcrs.to_epsg()
+    if epsg:
+        return epsg, pcrs.name, "EPSG", epsg, definition
+    return 100000, pcrs.name, "NONE", 100000, definition
+
+
+def _point_blob(x: float, y: float, srs_id: int) -> bytes:
+    header = b"GP" + struct.pack("<BBi", 0, 1, srs_id)  # version 0, little endian, no envelope
+    return header + struct.pack("<BIdd", 1, 1, x, y)
+
+
+def write_gcp_layer(path: str, result) -> None:
+    """Write the GCPs of ``result`` as layer ``gcps`` (geometry: destination map coordinates;
+    pixel mode uses (column, -row) of the reference like the ``.points`` file)."""
+    gcps = result.gcps
+    ref = np.array([g.reference_px for g in gcps], float).reshape(-1, 2)
+    mp = np.array([g.map_xy for g in gcps], float).reshape(-1, 2)
+    dst = destination_coordinates(result, ref, mp)
+    srs_id, name, org, code, definition = _srs(result)
+    con = sqlite3.connect(path)
+    try:
+        _create_metadata(con)
+        if srs_id not in (-1, 0, 4326):
+            con.execute("INSERT INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)",
+                        (name, srs_id, org, code, definition, ""))
+        cols = ", ".join(f'"{n}" {t}' for n, t in _FIELDS)
+        con.execute(f'CREATE TABLE "{TABLE}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom POINT, {cols})')
+        rows = []
+        for i, g in enumerate(gcps):
+            rows.append((_point_blob(dst[i, 0], dst[i, 1], srs_id), i + 1, int(g.enabled), g.target_px[0],
+                         g.target_px[1], g.reference_px[0], g.reference_px[1], g.map_xy[0], g.map_xy[1],
+                         g.residual_px, g.residual_xy[0], g.residual_xy[1], g.score))
+        marks = ",".join("?" * (len(_FIELDS) + 1))
+        names = ",".join(["geom"] + [f'"{n}"' for n, _ in _FIELDS])
+        con.executemany(f'INSERT INTO "{TABLE}" ({names}) VALUES ({marks})', rows)
+        bounds = (dst.min(axis=0).tolist() + dst.max(axis=0).tolist()) if len(dst) else [None] * 4
+        con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, "
+                    "max_x, max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)",
+                    (TABLE, "features", TABLE, "Hamta ground control points", bounds[0], bounds[1], bounds[2],
+                     bounds[3], srs_id))
+        con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (TABLE, "geom", "POINT", srs_id, 0, 0))
+        con.commit()
+    finally:
+        con.close()
+
+
+def _create_metadata(con) -> None:
+    con.execute(f"PRAGMA application_id = {_APPLICATION_ID}")
+    con.execute(f"PRAGMA user_version = {_USER_VERSION}")
+    con.execute("CREATE TABLE gpkg_spatial_ref_sys (srs_name TEXT NOT NULL, srs_id INTEGER NOT NULL PRIMARY KEY, "
+                "organization TEXT NOT NULL, organization_coordsys_id INTEGER NOT NULL, definition TEXT NOT NULL, "
+                "description TEXT)")
+    con.executemany("INSERT INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)", [
+        ("Undefined cartesian SRS", -1, "NONE", -1, "undefined", "undefined cartesian coordinate reference system"),
+        ("Undefined geographic SRS", 0, "NONE", 0, "undefined", "undefined geographic coordinate reference system"),
+        ("WGS 84 geodetic", 4326, "EPSG", 4326,
+         'GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563,AUTHORITY["EPSG","7030"]],'
+         'AUTHORITY["EPSG","6326"]],PRIMEM["Greenwich",0,AUTHORITY["EPSG","8901"]],UNIT["degree",0.0174532925199433,'
+         'AUTHORITY["EPSG","9122"]],AXIS["Latitude",NORTH],AXIS["Longitude",EAST],AUTHORITY["EPSG","4326"]]',
+         "longitude/latitude coordinates in decimal degrees on the WGS 84 spheroid"),
+    ])
+    con.execute("CREATE TABLE gpkg_contents (table_name TEXT NOT NULL PRIMARY KEY, data_type TEXT NOT NULL, "
+                "identifier TEXT UNIQUE, description TEXT DEFAULT '', last_change DATETIME NOT NULL DEFAULT "
+                "(strftime('%Y-%m-%dT%H:%M:%fZ','now')), min_x DOUBLE, min_y DOUBLE, max_x DOUBLE, max_y DOUBLE, "
+                "srs_id INTEGER, CONSTRAINT fk_gc_r_srs_id FOREIGN KEY (srs_id) REFERENCES gpkg_spatial_ref_sys(srs_id))")
+    con.execute("CREATE TABLE gpkg_geometry_columns (table_name TEXT NOT NULL, column_name TEXT NOT NULL, "
+                "geometry_type_name TEXT NOT NULL, srs_id INTEGER NOT NULL, z TINYINT NOT NULL, m TINYINT NOT NULL, "
+                "CONSTRAINT pk_geom_cols PRIMARY KEY (table_name, column_name), "
+                "CONSTRAINT fk_gc_tn FOREIGN KEY (table_name) REFERENCES gpkg_contents(table_name), "
+                "CONSTRAINT fk_gc_srs FOREIGN KEY (srs_id) REFERENCES gpkg_spatial_ref_sys (srs_id))")

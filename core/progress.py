@@ -1,0 +1,49 @@
+"""Progress reporting and cancellation, bridged by each front end (CLI bar, Processing feedback)."""
+from __future__ import annotations
+
+from typing import Callable, Optional
+
+from .errors import RegistrationCanceled
+
+ProgressFn = Callable[[float, str], None]
+CancelFn = Callable[[], bool]
+
+
+class Monitor:
+    """Maps stage-local progress onto an overall 0..1 range and checks for cancellation.
+
+    Parameters
+    ----------
+    progress : callable(fraction, message), optional
+        Receives the overall fraction in [0, 1] and a short stage name.
+    is_canceled : callable() -> bool, optional
+        Polled at every report; when it returns True, :class:`RegistrationCanceled` is raised.
+    """
+
+    def __init__(self, progress: Optional[ProgressFn] = None, is_canceled: Optional[CancelFn] = None,
+                 start: float = 0.0, stop: float = 1.0):
+        self._progress = progress
+        self._is_canceled = is_canceled
+        self._start = start
+        self._stop = stop
+
+    def report(self, fraction: float, message: str = "") -> None:
+        """Report ``fraction`` (0..1) of this monitor's span; raise if cancellation was asked."""
+        self.check()
+        if self._progress is not None:
+            f = min(max(fraction, 0.0), 1.0)
+            self._progress(self._start + f * (self._stop - self._start), message)
+
+    def check(self) -> None:
+        """Raise :class:`RegistrationCanceled` when the caller asked to stop."""
+        if self._is_canceled is not None and self._is_canceled():
+            raise RegistrationCanceled("Registration canceled; no outputs were written.")
+
+    def span(self, start: float, stop: float) -> "Monitor":
+        """A child monitor covering [start, stop] of this monitor's span."""
+        width = self._stop - self._start
+        return Monitor(self._progress, self._is_canceled,
+                       self._start + start * width, self._start + stop * width)
+
+
+NULL_MONITOR = Monitor()

@@ -1,0 +1,132 @@
+"""The result of one registration: model, GCPs, statistics and provenance."""
+from __future__ import annotations
+
+import dataclasses
+import platform
+from dataclasses import dataclass, field
+from typing import List
+
+import numpy as np
+
+from .coords import as_xy, gdal_coefficients, pixel_to_map
+from .io.raster import RasterInfo
+from .io.working import Plan
+
+REPORT_SCHEMA_VERSION = 1
+
+
+@dataclass(frozen=True)
+class Gcp:
+    """One ground control point.
+
+    ``target_px`` and ``reference_px`` are full-resolution pixels (corner convention), ``map_xy``
+    the reference map coordinates of ``reference_px`` (reference pixels in pixel mode).
+    ``residual_xy`` is model(target_px) - reference_px in reference pixels.
+    """
+
+    target_px: tuple
+    reference_px: tuple
+    map_xy: tuple
+    residual_xy: tuple
+    score: float
+    enabled: bool
+
+    @property
+    def residual_px(self) -> float:
+        return float(np.hypot(*self.residual_xy))
+
+
+@dataclass(frozen=True, eq=False)
+class RegistrationResult:
+    """Everything a registration produced, before any file is written.
+
+    ``model`` maps target pixels to reference pixels. ``gcps`` holds the points the model was
+    fitted on (``enabled``) followed by rejected matches (``enabled=False``).
+    """
+
+    method: str
+    params: dict
+    options: dict
+    model: object
+    target: RasterInfo
+    reference: RasterInfo
+    plan: Plan
+    gcps: List[Gcp]
+    stats: dict
+    timings: dict
+    notes: List[str] = field(default_factory=list)
+    diagnostics: dict = field(default_factory=dict)
+
+    @property
+    def pixel_mode(self) -> bool:
+        """True when the reference has no georeferencing: map coordinates are reference pixels."""
+        return not self.reference.georeferenced
+
+    def reference_to_map(self, reference_px) -> np.ndarray:
+        """Reference pixels -> reference map coordinates (identity in pixel mode)."""
+        xy = as_xy(reference_px)
+        return xy.copy() if self.pixel_mode else pixel_to_map(self.reference.transform, xy)
+
+    def map_points(self, target_px):
+        """Target pixels -> (reference pixels, map coordinates) through the fitted model."""
+        ref = self.model.apply(as_xy(target_px))
+        return ref, self.reference_to_map(ref)
+
+    def enabled_gcps(self) -> List[Gcp]:
+        return [g for g in self.gcps if g.enabled]
+
+    def to_report(self) -> dict:
+        """The ``report.json`` document (schema documented in docs/report.md)."""
+        ref = self.reference
+        return {
+            "schema_version": REPORT_SCHEMA_VERSION,
+            "method": self.method,
+            "params": self.params,
+            "options": self.options,
+            "model": self.model.to_dict(),
+            "target": _raster_dict(self.target),
+            "reference": dict(_raster_dict(ref), pixel_mode=self.pixel_mode),
+            "plan": {"mode": self.plan.mode,
+                     "reference_window": _window_list(self.plan.reference_window),
+                     "target_window": _window_list(self.plan.target_window)},
+            "gcps": [{"id": i + 1, "target_px": list(g.target_px), "reference_px": list(g.reference_px),
+                      "map": list(g.map_xy), "residual_px": g.residual_px, "residual_xy_px": list(g.residual_xy),
+                      "score": g.score, "enabled": g.enabled} for i, g in enumerate(self.gcps)],
+            "stats": self.stats,
+            "timings_s": self.timings,
+            "notes": list(self.notes),
+            "diagnostics": self.diagnostics,
+            "versions": versions(),
+        }
+
+
+def _raster_dict(info: RasterInfo) -> dict:
+    return {"path": info.path, "width": info.width, "height": info.height, "count": info.count,
+            "dtype": info.dtype, "crs": info.crs.to_wkt() if info.crs else None,
+            "transform": gdal_coefficients(info.transform), "georeferencing": info.georef_source}
+
+
+def _window_list(w) -> list:
+    return [int(w.col_off), int(w.row_off), int(w.width), int(w.height)]
+
+
+def versions() -> dict:
+    """Versions of Hamta and the libraries that shaped a result."""
+    import cv2
+    import pyproj
+    import rasterio
+    import scipy
+    import shapely
+
+    from .. import __version__
+
+    return {"hamta": __version__, "python": platform.python_version(), "numpy": np.__version__,
+            "scipy": scipy.__version__, "opencv": cv2.__version__, "rasterio": rasterio.__version__,
+            "gdal": rasterio.__gdal_version__, "pyproj": pyproj.__version__, "proj": pyproj.proj_version_str,
+            "shapely": shapely.__version__}
+
+
+def params_dict(params) -> dict:
+    return dataclasses.asdict(params) if dataclasses.is_dataclass(params) else dict(params or {})
+
+

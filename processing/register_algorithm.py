@@ -1,0 +1,228 @@
+"""Processing algorithms that register a raster with one Hamta method each (thin adapters)."""
+from __future__ import annotations
+
+import dataclasses
+
+from qgis.core import (QgsProcessing, QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingOutputNumber,
+                       QgsProcessingParameterBand, QgsProcessingParameterBoolean, QgsProcessingParameterDefinition,
+                       QgsProcessingParameterEnum, QgsProcessingParameterFileDestination,
+                       QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
+                       QgsProcessingParameterRasterLayer, QgsProcessingParameterString,
+                       QgsProcessingParameterVectorDestination)
+from qgis.PyQt.QtCore import QCoreApplication
+
+from ..core.errors import HamtaError, RegistrationCanceled
+from ..core.estimation.models import MODEL_CHOICES
+from ..core.methods import get_method
+from ..core.outputs import write_outputs
+from ..core.pipeline import RegisterOptions, register
+from .mapping import (GEOREF_LABELS, GRID_LABELS, MODEL_LABELS, REFINE_LABELS, RESAMPLING_LABELS,
+                      method_parameter_name, method_values, register_settings)
+
+
+def _advanced(p):
+    p.setFlags(p.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+    return p
+
+
+class RegisterAlgorithm(QgsProcessingAlgorithm):
+    """Base class: subclasses set ``METHOD``, ``ALG_NAME``, ``DISPLAY_NAME`` and ``HELP``."""
+
+    METHOD = ""
+    ALG_NAME = ""
+    DISPLAY_NAME = ""
+    HELP = ""
+
+    TARGET, TARGET_BAND = "TARGET", "TARGET_BAND"
+    REFERENCE, REFERENCE_BAND = "REFERENCE", "REFERENCE_BAND"
+    MODEL, RESAMPLING, GRID = "MODEL", "RESAMPLING", "GRID"
+    MAX_WORKING_PIXELS, RANSAC_THRESHOLD, SEED = "MAX_WORKING_PIXELS", "RANSAC_THRESHOLD", "SEED"
+    REFINE, MAX_GCPS, TARGET_GEOREF = "REFINE", "MAX_GCPS", "TARGET_GEOREF"
+    OUTPUT, GCP_LAYER, GCP_POINTS, GCP_VRT, REPORT = "OUTPUT", "GCP_LAYER", "GCP_POINTS", "GCP_VRT", "REPORT"
+
+    def tr(self, text):
+        return QCoreApplication.translate(self.__class__.__name__, text)
+
+    def createInstance(self):
+        return self.__class__()
+
+    def name(self):
+        return self.ALG_NAME
+
+    def displayName(self):
+        return self.tr(self.DISPLAY_NAME)
+
+    def group(self):
+        return self.tr("Registration")
+
+    def groupId(self):
+        return "registration"
+
+    def shortHelpString(self):
+        return self.tr(self.HELP)
+
+    def tags(self):
+        return self.tr("georeference,coregistration,registration,GCP,match,align,warp").split(",")
+
+    def initAlgorithm(self, config=None):
+        method = get_method(self.METHOD)
+        d = RegisterOptions()
+        self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Target raster (to georeference)")))
+        self.addParameter(QgsProcessingParameterRasterLayer(self.REFERENCE, self.tr("Reference raster")))
+        model_default = MODEL_CHOICES.index(method.default_model)
+        self.addParameter(QgsProcessingParameterEnum(self.MODEL, self.tr("Transformation"),
+                                                     options=[self.tr(x) for x in MODEL_LABELS],
+                                                     defaultValue=model_default))
+        self.addParameter(QgsProcessingParameterEnum(self.RESAMPLING, self.tr("Resampling"),
+                                                     options=[self.tr(x) for x in RESAMPLING_LABELS], defaultValue=1))
+        self.addParameter(_advanced(QgsProcessingParameterBand(
+            self.TARGET_BAND, self.tr("Target band to match (empty: luminance of RGB, else band 1)"),
+            parentLayerParameterName=self.TARGET, optional=True)))
+        self.addParameter(_advanced(QgsProcessingParameterBand(
+            self.REFERENCE_BAND, self.tr("Reference band to match"), parentLayerParameterName=self.REFERENCE,
+            optional=True)))
+        self.addParameter(_advanced(QgsProcessingParameterEnum(
+            self.TARGET_GEOREF, self.tr("Target's own georeferencing"), options=[self.tr(x) for x in GEOREF_LABELS],
+            defaultValue=0)))
+        self.addParameter(_advanced(QgsProcessingParameterEnum(
+            self.GRID, self.tr("Output pixel grid"), options=[self.tr(x) for x in GRID_LABELS], defaultValue=0)))
+        self.addParameter(_advanced(QgsProcessingParameterEnum(
+            self.REFINE, self.tr("Full-resolution refinement"), options=[self.tr(x) for x in REFINE_LABELS],
+            defaultValue=0)))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.MAX_WORKING_PIXELS, self.tr("Working image size (pixels)"), QgsProcessingParameterNumber.Integer,
+            d.max_working_pixels, minValue=4096)))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.RANSAC_THRESHOLD, self.tr("RANSAC tolerance (working pixels)"), QgsProcessingParameterNumber.Double,
+            d.ransac_threshold_px, minValue=0.1)))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.MAX_GCPS, self.tr("Maximum number of GCPs"), QgsProcessingParameterNumber.Integer, d.max_gcps,
+            minValue=4)))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.SEED, self.tr("Random seed"), QgsProcessingParameterNumber.Integer, d.seed, minValue=0)))
+        for f in dataclasses.fields(method.params_type):
+            self.addParameter(_advanced(self._method_parameter(f)))
+
+        self.addParameter(QgsProcessingParameterRasterDestination(self.OUTPUT, self.tr("Georeferenced raster")))
+        self.addParameter(QgsProcessingParameterVectorDestination(
+            self.GCP_LAYER, self.tr("GCP points"), QgsProcessing.TypeVectorPoint, optional=True, createByDefault=True))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            self.GCP_POINTS, self.tr("GCP file for the QGIS Georeferencer"), self.tr("GCP points (*.points)"),
+            optional=True, createByDefault=False))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            self.GCP_VRT, self.tr("Target with GCPs, not resampled (VRT)"), self.tr("VRT (*.vrt)"), optional=True,
+            createByDefault=False))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            self.REPORT, self.tr("Report"), self.tr("JSON (*.json)"), optional=True, createByDefault=False))
+        for name, label in (("RMSE_PX", "RMSE of the GCPs (reference pixels)"),
+                            ("RMS_LOO_PX", "Leave-one-out RMS (reference pixels)"), ("N_GCPS", "Number of GCPs")):
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(label)))
+
+    def _method_parameter(self, f):
+        name, label = method_parameter_name(f.name), f.metadata.get("help", f.name)
+        choices = f.metadata.get("choices")
+        if choices:
+            return QgsProcessingParameterEnum(name, self.tr(label), options=list(choices),
+                                              defaultValue=list(choices).index(f.default))
+        if isinstance(f.default, bool):
+            return QgsProcessingParameterBoolean(name, self.tr(label), f.default)
+        if isinstance(f.default, (int, float)):
+            kind = QgsProcessingParameterNumber.Integer if isinstance(f.default, int) else QgsProcessingParameterNumber.Double
+            p = QgsProcessingParameterNumber(name, self.tr(label), kind, f.default)
+            if f.metadata.get("minimum") is not None:
+                p.setMinimum(f.metadata["minimum"])
+            if f.metadata.get("maximum") is not None:
+                p.setMaximum(f.metadata["maximum"])
+            return p
+        return QgsProcessingParameterString(name, self.tr(label), str(f.default))
+
+    def _raster_path(self, parameters, name, context):
+        layer = self.parameterAsRasterLayer(parameters, name, context)
+        if layer is None:
+            raise QgsProcessingException(self.invalidRasterError(parameters, name))
+        if layer.providerType() != "gdal":
+            raise QgsProcessingException(self.tr("{} must be a raster file GDAL can read, not a '{}' layer.")
+                                         .format(layer.name(), layer.providerType()))
+        return layer.source()
+
+    def _values(self, parameters, context):
+        method = get_method(self.METHOD)
+        v = {
+            self.MODEL: self.parameterAsEnum(parameters, self.MODEL, context),
+            self.RESAMPLING: self.parameterAsEnum(parameters, self.RESAMPLING, context),
+            self.GRID: self.parameterAsEnum(parameters, self.GRID, context),
+            self.REFINE: self.parameterAsEnum(parameters, self.REFINE, context),
+            self.TARGET_GEOREF: self.parameterAsEnum(parameters, self.TARGET_GEOREF, context),
+            self.TARGET_BAND: self.parameterAsInt(parameters, self.TARGET_BAND, context),
+            self.REFERENCE_BAND: self.parameterAsInt(parameters, self.REFERENCE_BAND, context),
+            self.MAX_WORKING_PIXELS: self.parameterAsInt(parameters, self.MAX_WORKING_PIXELS, context),
+            self.RANSAC_THRESHOLD: self.parameterAsDouble(parameters, self.RANSAC_THRESHOLD, context),
+            self.MAX_GCPS: self.parameterAsInt(parameters, self.MAX_GCPS, context),
+            self.SEED: self.parameterAsInt(parameters, self.SEED, context),
+            self.OUTPUT: self.parameterAsOutputLayer(parameters, self.OUTPUT, context),
+            self.GCP_LAYER: self.parameterAsOutputLayer(parameters, self.GCP_LAYER, context),
+            self.GCP_POINTS: self.parameterAsFileOutput(parameters, self.GCP_POINTS, context),
+            self.GCP_VRT: self.parameterAsFileOutput(parameters, self.GCP_VRT, context),
+            self.REPORT: self.parameterAsFileOutput(parameters, self.REPORT, context),
+        }
+        for f in dataclasses.fields(method.params_type):
+            key = method_parameter_name(f.name)
+            if f.metadata.get("choices"):
+                v[key] = self.parameterAsEnum(parameters, key, context)
+            elif isinstance(f.default, bool):
+                v[key] = self.parameterAsBoolean(parameters, key, context)
+            elif isinstance(f.default, int):
+                v[key] = self.parameterAsInt(parameters, key, context)
+            elif isinstance(f.default, float):
+                v[key] = self.parameterAsDouble(parameters, key, context)
+            else:
+                v[key] = self.parameterAsString(parameters, key, context)
+        return v
+
+    def processAlgorithm(self, parameters, context, feedback):
+        method = get_method(self.METHOD)
+        target = self._raster_path(parameters, self.TARGET, context)
+        reference = self._raster_path(parameters, self.REFERENCE, context)
+        values = self._values(parameters, context)
+        if values[self.GCP_LAYER] and not values[self.GCP_LAYER].lower().endswith(".gpkg"):
+            raise QgsProcessingException(self.tr("GCP points must be written to a GeoPackage (.gpkg) file."))
+        options, out = register_settings(values, method.default_model)
+
+        def progress(fraction, message):
+            feedback.setProgress(100.0 * fraction)
+            if message:
+                feedback.setProgressText(message)
+
+        try:
+            result = register(target, reference, method=self.METHOD, params=method_values(method, values),
+                              options=options, progress=lambda f, m: progress(0.8 * f, m),
+                              is_canceled=feedback.isCanceled)
+            for note in result.notes:
+                feedback.pushInfo(note)
+            written = write_outputs(result, out["paths"], resampling=out["resampling"], grid=out["grid"],
+                                    progress=lambda f, m: progress(0.8 + 0.2 * f, m),
+                                    is_canceled=feedback.isCanceled)
+        except RegistrationCanceled:
+            raise QgsProcessingException(self.tr("Registration canceled; no outputs were written."))
+        except HamtaError as exc:
+            raise QgsProcessingException(str(exc))
+        s = result.stats
+        feedback.pushInfo(self.tr("{} GCPs from {} matches; RMSE {:.3f} px, leave-one-out RMS {} px.").format(
+            s["n_gcps"], s["n_matches"], s["rmse_px"], "n/a" if s["rms_loo_px"] is None else f"{s['rms_loo_px']:.3f}"))
+        results = {self.OUTPUT: written.get("geotiff"), self.GCP_LAYER: written.get("gpkg"),
+                   self.GCP_POINTS: written.get("points"), self.GCP_VRT: written.get("vrt"),
+                   self.REPORT: written.get("report"), "RMSE_PX": s["rmse_px"], "RMS_LOO_PX": s["rms_loo_px"],
+                   "N_GCPS": s["n_gcps"]}
+        return {k: v for k, v in results.items() if v is not None}
+
+
+class RegisterSiftAlgorithm(RegisterAlgorithm):
+    METHOD = "sift"
+    ALG_NAME = "registersift"
+    DISPLAY_NAME = "Register raster (SIFT baseline)"
+    HELP = ("Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, "
+            "Lowe's ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen "
+            "transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point "
+            "layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report."
+            "<br><br>Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, "
+            "IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94")
