@@ -134,7 +134,7 @@ def _fit_homography(src: np.ndarray, dst: np.ndarray) -> np.ndarray:
     rows[0::2, 6:8], rows[0::2, 8] = -a * b[:, :1], -b[:, 0]
     rows[1::2, 3:5], rows[1::2, 5] = a, 1
     rows[1::2, 6:8], rows[1::2, 8] = -a * b[:, 1:], -b[:, 1]
-    h = np.linalg.svd(rows)[2][-1].reshape(3, 3)
+    h = np.linalg.svd(rows, full_matrices=False)[2][-1].reshape(3, 3)
     m = np.linalg.inv(td) @ h @ ts
     m = m / m[2, 2]
     for _ in range(5):
@@ -231,8 +231,10 @@ def _poly_design(uv: np.ndarray, order: int) -> np.ndarray:
 
 
 def _tps_kernel(r2: np.ndarray) -> np.ndarray:
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(r2 > 0, r2 * np.log(r2), 0.0)
+    out = np.zeros_like(r2)
+    np.log(r2, out=out, where=r2 > 1e-300)
+    out *= r2
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -261,13 +263,14 @@ class ThinPlateSplineModel:
     def _q(self, xy) -> np.ndarray:
         return (as_xy(xy) - self.center) / self.scale
 
-    def apply(self, xy, chunk: int = 4096) -> np.ndarray:
+    def apply(self, xy, chunk: int = 8192) -> np.ndarray:
         q = self._q(xy)
         c = (self.control - self.center) / self.scale
+        c2 = (c ** 2).sum(axis=1)
         out = np.empty_like(q)
         for i in range(0, len(q), chunk):
             part = q[i:i + chunk]
-            r2 = ((part[:, None, :] - c[None, :, :]) ** 2).sum(axis=2)
+            r2 = np.maximum((part ** 2).sum(axis=1)[:, None] + c2[None, :] - 2.0 * part @ c.T, 0.0)
             out[i:i + chunk] = _tps_kernel(r2) @ self.weights + np.column_stack([np.ones(len(part)), part]) @ self.affine
         return out
 

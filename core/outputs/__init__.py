@@ -39,15 +39,20 @@ class OutputPaths:
 
 
 def write_outputs(result, paths: OutputPaths, *, resampling: str = "bilinear", grid: str = "auto",
-                  progress=None, is_canceled=None) -> Dict[str, str]:
-    """Write the requested outputs of ``result``; returns {output name: absolute path}."""
+                  resolution: Optional[float] = None, progress=None, is_canceled=None) -> Dict[str, str]:
+    """Write the requested outputs of ``result``; returns {output name: absolute path}.
+
+    ``grid`` and ``resolution`` (reference map units) choose the GeoTIFF's pixel grid; see
+    :func:`hamta.core.outputs.geotiff.output_grid`.
+    """
     monitor = Monitor(progress, is_canceled)
     wanted = {k: os.path.abspath(v) for k, v in paths.as_dict().items()}
     for folder in {os.path.dirname(p) for p in wanted.values()}:
         check_writable_folder(folder)
     with OutputSet() as out:
         if "geotiff" in wanted:
-            write_geotiff(out.temp_for(wanted["geotiff"]), result, resampling, grid, monitor.span(0.0, 0.9))
+            write_geotiff(out.temp_for(wanted["geotiff"]), result, resampling, grid, resolution,
+                          monitor.span(0.0, 0.9))
         if "vrt" in wanted:
             write_vrt(out.temp_for(wanted["vrt"]), result)
         if "points" in wanted:
@@ -58,7 +63,7 @@ def write_outputs(result, paths: OutputPaths, *, resampling: str = "bilinear", g
         if "report" in wanted:
             report = result.to_report()
             report["outputs"] = wanted
-            report["output_options"] = {"resampling": resampling, "grid": grid}
+            report["output_options"] = {"resampling": resampling, "grid": grid, "resolution": resolution}
             write_report(out.temp_for(wanted["report"]), report)
     monitor.report(1.0, "done")
     return wanted

@@ -119,12 +119,21 @@ def write_vrt(path: str, result, gcp_rows: Optional[np.ndarray] = None, geotrans
     tree.write(path, encoding="UTF-8")
 
 
-def output_grid(result, grid: str = "auto"):
+def write_model_vrt(path: str, result, fallback_crs_wkt: Optional[str] = None) -> dict:
+    """Write the VRT GDAL warps from (the target carrying the model); return the transformer options
+    GDAL needs with it. ``fallback_crs_wkt`` labels map coordinates that have no CRS (pixel mode)."""
+    geotransform, rows, crs_wkt, options = model_georeferencing(result)
+    write_vrt(path, result, gcp_rows=rows, geotransform=geotransform, crs_wkt=crs_wkt or fallback_crs_wkt)
+    return options
+
+
+def output_grid(result, grid: str = "auto", resolution: Optional[float] = None):
     """(transform, width, height, crs) of the warped output, north-up in the reference CRS.
 
     'reference' uses the reference pixel size and grid; 'native' keeps the target's own
     resolution (snapped to the reference grid origin); 'auto' picks 'reference' when the two
-    resolutions are within 10 %. In pixel mode the output is the reference pixel grid itself.
+    resolutions are within 10 %. ``resolution`` (reference map units) overrides the pixel size.
+    In pixel mode the output is the reference pixel grid itself.
     """
     if grid not in GRID_CHOICES:
         raise ValueError(f"grid must be one of {GRID_CHOICES}, got {grid!r}")
@@ -139,7 +148,9 @@ def output_grid(result, grid: str = "auto"):
     centre = as_xy([t.width / 2.0, t.height / 2.0])
     scale = math.sqrt(abs(np.linalg.det(local_jacobian(result.model, centre)[0])))  # ref px per target px
     res_x, res_y = abs(ref.transform.a) or ref.pixel_size, abs(ref.transform.e) or ref.pixel_size
-    if grid == "native" or (grid == "auto" and not 0.9 <= scale <= 1.1):
+    if resolution is not None:
+        res_x = res_y = float(resolution)
+    elif grid == "native" or (grid == "auto" and not 0.9 <= scale <= 1.1):
         res_x, res_y = res_x * scale, res_y * scale
     x0, y0 = ref.transform.c, ref.transform.f
     xmin = x0 + math.floor((mp[:, 0].min() - x0) / res_x) * res_x
@@ -147,7 +158,8 @@ def output_grid(result, grid: str = "auto"):
     ymax = y0 - math.floor((y0 - mp[:, 1].max()) / res_y) * res_y
     ymin = y0 - math.ceil((y0 - mp[:, 1].min()) / res_y) * res_y
     width, height = int(round((xmax - xmin) / res_x)), int(round((ymax - ymin) / res_y))
-    limit = 16 * t.width * t.height * max(scale * scale, 1.0 / (scale * scale)) + 1e6
+    px_per_target_px = scale * scale * (ref.pixel_size ** 2) / (res_x * res_y)
+    limit = 16 * t.width * t.height * max(px_per_target_px, 1.0) + 1e6
     if width * height > limit or width <= 0 or height <= 0:
         raise OutputError(f"The fitted model maps '{t.path}' onto an implausible {width} x {height} pixel "
                           "grid; the registration is probably wrong, so no raster was written.")
@@ -155,17 +167,16 @@ def output_grid(result, grid: str = "auto"):
 
 
 def write_geotiff(path: str, result, resampling: str = "bilinear", grid: str = "auto",
-                  monitor: Monitor = Monitor()) -> None:
+                  resolution: Optional[float] = None, monitor: Monitor = Monitor()) -> None:
     """Warp every band of the target onto the output grid and write a tiled, compressed GeoTIFF."""
     if resampling not in RESAMPLING_CHOICES:
         raise ValueError(f"resampling must be one of {RESAMPLING_CHOICES}, got {resampling!r}")
-    transform, width, height, crs = output_grid(result, grid)
+    transform, width, height, crs = output_grid(result, grid, resolution)
     t = result.target
     warp_crs = crs or _PLACEHOLDER_CRS
-    geotransform, rows, model_crs, options = model_georeferencing(result)
     with tempfile.TemporaryDirectory() as tmp:
         vrt = os.path.join(tmp, "model.vrt")
-        write_vrt(vrt, result, gcp_rows=rows, geotransform=geotransform, crs_wkt=model_crs or warp_crs.to_wkt())
+        options = write_model_vrt(vrt, result, warp_crs.to_wkt())
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NotGeoreferencedWarning)
             with rasterio.open(vrt) as src:

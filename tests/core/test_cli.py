@@ -1,0 +1,73 @@
+"""The ``hamta`` command line, through its console script and its ``main`` function."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from hamta.core.cli import main
+from hamta.core.estimation.models import model_from_dict
+
+
+def test_register_writes_every_output_and_prints_them(tmp_path, demo_pair, capsys):
+    out = tmp_path / "out"
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+               "--model", "affine", "--out", str(out), "--vrt", "--quiet"])
+    assert rc == 0
+    printed = capsys.readouterr().out
+    for name in ("registered.tif", "gcps.points", "gcps.gpkg", "gcps.vrt", "report.json"):
+        assert (out / name).is_file() and name in printed
+    report = json.loads((out / "report.json").read_text())
+    assert report["method"] == "sift" and report["outputs"]["geotiff"].endswith("registered.tif")
+
+
+@pytest.mark.parametrize("model", ["affine", "tps"])
+def test_map_points_uses_the_stored_model(tmp_path, demo_pair, capsys, model):
+    out = tmp_path / model
+    main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--model", model,
+          "--out", str(out), "--quiet"])
+    capsys.readouterr()
+    assert main(["map-points", str(out / "report.json"), "10", "20", "300.5", "400.25", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    report = json.loads((out / "report.json").read_text())
+    ref = model_from_dict(report["model"]).apply([[10, 20], [300.5, 400.25]])
+    assert np.allclose([r["reference_px"] for r in rows], ref)
+    gt = report["reference"]["transform"]  # GDAL order: c, a, b, f, d, e
+    x, y = rows[1]["reference_px"]
+    assert rows[1]["map"] == pytest.approx([gt[0] + gt[1] * x + gt[2] * y, gt[3] + gt[4] * x + gt[5] * y])
+
+
+def test_errors_exit_nonzero_with_a_message(tmp_path, demo_pair, capsys):
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", str(tmp_path / "nope.tif"),
+               "--out", str(tmp_path / "o"), "--quiet"])
+    assert rc == 1 and "target raster" in capsys.readouterr().err
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--model", "wobbly",
+               "--out", str(tmp_path / "o"), "--quiet"])
+    assert rc == 2 and "unknown model" in capsys.readouterr().err
+
+
+def test_methods_lists_sift_with_parameters(capsys):
+    assert main(["methods"]) == 0
+    out = capsys.readouterr().out
+    assert "sift" in out and "--param ratio=0.8" in out
+
+
+def test_console_script_is_installed_and_shows_progress(tmp_path, demo_pair):
+    exe = shutil.which("hamta", path=os.path.dirname(sys.executable))
+    assert exe, "the 'hamta' console script is not installed next to this interpreter"
+    proc = subprocess.run([exe, "register", "--reference", demo_pair["reference"], "--target", demo_pair["target"],
+                           "--out", str(tmp_path / "o")], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert "100%" in proc.stderr and "registered.tif" in proc.stdout
+
+
+def test_demo_reports_the_true_error(tmp_path, capsys):
+    assert main(["demo", "--out", str(tmp_path / "demo"), "--quiet"]) == 0
+    out = capsys.readouterr().out
+    line = next(x for x in out.splitlines() if x.startswith("TRUE check-point error"))
+    rmse = float(line.split("RMSE ")[1].split(" px")[0])
+    assert rmse < 0.5
+    assert (tmp_path / "demo" / "result" / "registered.tif").is_file()

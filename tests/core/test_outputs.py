@@ -1,0 +1,171 @@
+"""Every output format: content, conventions, GDAL's agreement with the model, atomic writing."""
+import dataclasses
+import json
+import sqlite3
+import struct
+import subprocess
+import shutil
+
+import numpy as np
+import pytest
+import rasterio
+
+from hamta.core import OutputError, RegisterOptions, register
+from hamta.core.estimation.models import MODEL_CHOICES
+from hamta.core.io.raster import open_raster
+from hamta.core.outputs import OutputPaths, write_outputs
+from hamta.core.outputs.geotiff import write_model_vrt
+from hamta.core.outputs.points import HEADER, qgs_double, read_points
+from hamta.core.outputs.report import read_report
+
+
+@pytest.fixture(scope="module")
+def results(demo_pair):
+    return {m: register(demo_pair["target"], demo_pair["reference"], "sift", options=RegisterOptions(model=m))
+            for m in MODEL_CHOICES}
+
+
+def test_qgs_double_formats_like_qgis():
+    assert qgs_double(500000.0) == "500000"
+    assert qgs_double(0.1) == "0.10000000000000001"
+    assert qgs_double(-0.0) == "0"
+    assert qgs_double(-12.5) == "-12.5"
+
+
+def test_points_file_layout_and_round_trip(tmp_path, results):
+    res = results["affine"]
+    path = tmp_path / "g.points"
+    write_outputs(res, OutputPaths(points=str(path)))
+    lines = path.read_text().split("\n")
+    assert lines[0].startswith("#CRS: PROJCRS[\"WGS 84 / UTM zone 39N\"") and "\n" not in lines[0]
+    assert lines[1] == HEADER and lines[-1] == ""
+    assert all(len(row.split(",")) == 8 for row in lines[2:-1])
+    crs, rows = read_points(str(path))
+    assert "UTM zone 39N" in crs and len(rows) == len(res.gcps)
+    for g, (mx, my, sx, sy, enabled) in zip(res.gcps, rows):
+        assert (mx, my) == pytest.approx(g.map_xy, abs=1e-9)
+        assert (sx, sy) == pytest.approx((g.target_px[0], -g.target_px[1]), abs=1e-9)  # QGIS: sourceY = -row
+        assert enabled == g.enabled
+
+
+def test_points_use_target_map_coordinates_when_the_target_is_georeferenced(tmp_path, landsat):
+    from hamta.core.evaluation.cases import reprojected_case
+
+    case = reprojected_case(str(tmp_path), landsat, dst_crs="EPSG:32617", shift_px=(10.0, 5.0))
+    res = register(case.target, case.reference, "sift")
+    write_outputs(res, OutputPaths(points=str(tmp_path / "p.points")))
+    _, rows = read_points(str(tmp_path / "p.points"))
+    t = res.target.transform
+    g = res.gcps[0]
+    assert rows[0][2:4] == pytest.approx(t * g.target_px, abs=1e-6)
+
+
+def test_gcp_geopackage_is_a_valid_point_layer(tmp_path, results):
+    res = results["affine"]
+    path = tmp_path / "g.gpkg"
+    write_outputs(res, OutputPaths(gpkg=str(path)))
+    con = sqlite3.connect(path)
+    assert con.execute("PRAGMA application_id").fetchone()[0] == 0x47504B47
+    assert con.execute("SELECT srs_id FROM gpkg_geometry_columns WHERE table_name='gcps'").fetchone()[0] == 32639
+    rows = con.execute("SELECT geom, enabled, residual_px, map_x, map_y FROM gcps ORDER BY fid").fetchall()
+    assert len(rows) == len(res.gcps)
+    blob, enabled, residual, mx, my = rows[0]
+    assert blob[:2] == b"GP" and struct.unpack("<dd", blob[-16:]) == pytest.approx((mx, my))
+    assert enabled == 1 and residual == pytest.approx(res.gcps[0].residual_px)
+    if shutil.which("ogrinfo"):
+        info = subprocess.run(["ogrinfo", "-so", str(path), "gcps"], capture_output=True, text=True).stdout
+        assert f"Feature Count: {len(res.gcps)}" in info and "UTM zone 39N" in info
+
+
+def test_vrt_carries_the_enabled_gcps_without_resampling(tmp_path, results):
+    res = results["affine"]
+    path = tmp_path / "g.vrt"
+    write_outputs(res, OutputPaths(vrt=str(path)))
+    with rasterio.open(path) as ds, rasterio.open(res.target.path) as src:
+        gcps, crs = ds.gcps
+        assert len(gcps) == len(res.enabled_gcps()) and crs.to_epsg() == 32639
+        assert np.array_equal(ds.read(), src.read())
+        g = res.enabled_gcps()[0]
+        assert (gcps[0].col, gcps[0].row, gcps[0].x, gcps[0].y) == pytest.approx(g.target_px + g.map_xy)
+
+
+@pytest.mark.skipif(shutil.which("gdaltransform") is None, reason="needs GDAL's gdaltransform")
+@pytest.mark.parametrize("model", MODEL_CHOICES)
+def test_gdal_transformer_reproduces_the_model(tmp_path, results, model):
+    """The VRT we warp from, read by GDAL's own transformer, maps target pixels where the model does."""
+    res = results[model]
+    vrt = str(tmp_path / "model.vrt")
+    options = write_model_vrt(vrt, res)
+    flags = {"GCP_TPS": ["-tps"], "GCP_POLYNOMIAL": ["-order", str(options.get("MAX_GCP_ORDER"))]}
+    pts = np.random.default_rng(0).random((300, 2)) * [res.target.width, res.target.height]
+    out = subprocess.run(["gdaltransform", *flags.get(options.get("SRC_METHOD"), []), vrt], capture_output=True,
+                         text=True, input="\n".join(f"{x:.10f} {y:.10f}" for x, y in pts), check=True).stdout
+    gdal_map = np.array([[float(v) for v in line.split()[:2]] for line in out.strip().splitlines()])
+    err = np.linalg.norm(gdal_map - res.reference_to_map(res.model.apply(pts)), axis=1) / 10.0  # reference px
+    assert err.max() < (0.01 if model == "projective" else 1e-6)
+
+
+@pytest.mark.parametrize("model", ["affine", "tps"])
+def test_warped_raster_agrees_with_the_model(tmp_path, results, raster_writer, model):
+    """Warp a raster whose values are its own pixel-centre coordinates: every output pixel then holds
+    the target position GDAL sampled, which the model must map onto that output pixel. Exact for a
+    geotransform; with GCP transformers GDAL's warper itself adds a few hundredths of a pixel
+    (measured against its own transformer with GDAL 3.6 and 3.10)."""
+    res = results[model]
+    t = res.target
+    cols, rows = np.meshgrid(np.arange(t.width) + 0.5, np.arange(t.height) + 0.5)
+    ramp = raster_writer("ramp.tif", np.stack([cols, rows]).astype("float64"))
+    res = dataclasses.replace(res, target=open_raster(ramp))
+    out = tmp_path / "warped.tif"
+    write_outputs(res, OutputPaths(geotiff=str(out)), resampling="bilinear", resolution=8.0)
+    with rasterio.open(out) as ds:
+        data, tr = ds.read(), ds.transform
+        assert ds.crs.to_epsg() == 32639
+    valid = np.isfinite(data).all(axis=0)
+    valid[[0, -1], :] = valid[:, [0, -1]] = False
+    r, c = np.nonzero(valid)
+    keep = (data[0][r, c] > 2) & (data[0][r, c] < t.width - 2) & (data[1][r, c] > 2) & (data[1][r, c] < t.height - 2)
+    pick = np.random.default_rng(0).choice(np.flatnonzero(keep), 20000, replace=False)
+    r, c = r[pick], c[pick]
+    sampled = np.column_stack([data[0][r, c], data[1][r, c]])
+    centres = res.reference_to_map(res.model.apply(sampled))
+    x, y = tr.c + (c + 0.5) * tr.a, tr.f + (r + 0.5) * tr.e
+    err = np.hypot(centres[:, 0] - x, centres[:, 1] - y) / 10.0  # reference pixels
+    assert np.percentile(err, 99) < (1e-3 if model == "affine" else 0.05)
+
+
+def test_report_schema(tmp_path, results):
+    res = results["affine"]
+    written = write_outputs(res, OutputPaths(report=str(tmp_path / "report.json")))
+    rep = read_report(written["report"])
+    assert rep["method"] == "sift" and rep["model"]["type"] == "affine"
+    m = np.array(rep["model"]["target_px_to_reference_px"])
+    assert m.shape == (3, 3) and np.allclose(m, res.model.matrix)
+    g = rep["gcps"][0]
+    assert set(g) >= {"target_px", "reference_px", "map", "residual_px", "enabled"}
+    assert len(rep["reference"]["transform"]) == 6 and "UTM zone 39N" in rep["reference"]["crs"]
+    assert set(rep["stats"]) >= {"n_matches", "n_inliers", "rmse_px", "rms_loo_px"}
+    assert rep["timings_s"]["total"] > 0 and {"read", "match", "estimate"} <= set(rep["timings_s"])
+    assert rep["versions"]["hamta"] and rep["versions"]["gdal"]
+    json.dumps(rep, allow_nan=False)
+
+
+def test_outputs_appear_whole_or_not_at_all(tmp_path, results, monkeypatch):
+    import hamta.core.outputs as outputs
+
+    def broken(path, result):
+        with open(path, "w") as f:
+            f.write("partial")
+        raise RuntimeError("disk full")
+
+    monkeypatch.setattr(outputs, "write_gcp_layer", broken)
+    with pytest.raises(RuntimeError):
+        write_outputs(results["affine"], OutputPaths.in_folder(str(tmp_path / "out")))
+    assert list((tmp_path / "out").iterdir()) == []
+
+
+def test_unwritable_output_folder_is_a_clear_error(tmp_path, results):
+    blocker = tmp_path / "file.txt"
+    blocker.write_text("x")
+    with pytest.raises(OutputError, match="Cannot create the output folder '.*file.txt/out'"):
+        write_outputs(results["affine"], OutputPaths.in_folder(str(blocker / "out")))
