@@ -19,11 +19,11 @@ test: $(VENV)/.ok $(QVENV)/.ok
 
 # Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL).
 test-wheels: $(VENV)/.ok
-	$(VENV)/bin/python -m pytest tests/core -q
+	$(VENV)/bin/python -P -m pytest tests/core -q
 
 # Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...).
 test-debian: $(QVENV)/.ok
-	$(QVENV)/bin/python -m pytest tests -q
+	$(QVENV)/bin/python -P -m pytest tests -q
 
 bench: $(VENV)/.ok
 	$(VENV)/bin/hamta bench

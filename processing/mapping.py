@@ -9,14 +9,6 @@ from ..core.io.working import TARGET_GEOREF_CHOICES
 from ..core.outputs import GRID_CHOICES, RESAMPLING_CHOICES, OutputPaths
 from ..core.pipeline import REFINE_CHOICES, RegisterOptions
 
-MODEL_LABELS = ("Similarity (Helmert)", "Affine (polynomial 1)", "Projective", "Polynomial 2", "Polynomial 3",
-                "Thin plate spline")
-RESAMPLING_LABELS = ("Nearest neighbour", "Bilinear", "Cubic", "Cubic B-spline", "Lanczos")
-GRID_LABELS = ("Automatic", "Reference pixel grid", "Target's native resolution")
-REFINE_LABELS = ("Automatic (when images were decimated)", "Always", "Never")
-GEOREF_LABELS = ("Use when it overlaps the reference", "Always use (fail otherwise)", "Ignore")
-
-
 def method_parameter_name(field_name: str) -> str:
     """Processing parameter name of a method parameter (``ratio`` -> ``P_RATIO``)."""
     return "P_" + field_name.upper()

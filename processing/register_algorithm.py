@@ -9,15 +9,28 @@ from qgis.core import (QgsProcessing, QgsProcessingAlgorithm, QgsProcessingExcep
                        QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
                        QgsProcessingParameterRasterLayer, QgsProcessingParameterString,
                        QgsProcessingParameterVectorDestination)
-from qgis.PyQt.QtCore import QCoreApplication
+from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QCoreApplication
 
 from ..core.errors import HamtaError, RegistrationCanceled
 from ..core.estimation.models import MODEL_CHOICES
 from ..core.methods import get_method
 from ..core.outputs import write_outputs
 from ..core.pipeline import RegisterOptions, register
-from .mapping import (GEOREF_LABELS, GRID_LABELS, MODEL_LABELS, REFINE_LABELS, RESAMPLING_LABELS,
-                      method_parameter_name, method_values, register_settings)
+from .mapping import method_parameter_name, method_values, register_settings
+
+_CONTEXT = "RegisterAlgorithm"  # every string below is translated in this context
+MODEL_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Similarity (Helmert)"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Affine (polynomial 1)"),
+                QT_TRANSLATE_NOOP("RegisterAlgorithm", "Projective"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Polynomial 2"),
+                QT_TRANSLATE_NOOP("RegisterAlgorithm", "Polynomial 3"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Thin plate spline"))
+RESAMPLING_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Nearest neighbour"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Bilinear"),
+                     QT_TRANSLATE_NOOP("RegisterAlgorithm", "Cubic"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Cubic B-spline"),
+                     QT_TRANSLATE_NOOP("RegisterAlgorithm", "Lanczos"))
+GRID_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Automatic"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Reference pixel grid"),
+               QT_TRANSLATE_NOOP("RegisterAlgorithm", "Target's native resolution"))
+REFINE_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Automatic (when images were decimated)"),
+                 QT_TRANSLATE_NOOP("RegisterAlgorithm", "Always"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Never"))
+GEOREF_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Use when it overlaps the reference"),
+                 QT_TRANSLATE_NOOP("RegisterAlgorithm", "Always use (fail otherwise)"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Ignore"))
 
 
 def _advanced(p):
@@ -41,7 +54,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
     OUTPUT, GCP_LAYER, GCP_POINTS, GCP_VRT, REPORT = "OUTPUT", "GCP_LAYER", "GCP_POINTS", "GCP_VRT", "REPORT"
 
     def tr(self, text):
-        return QCoreApplication.translate(self.__class__.__name__, text)
+        return QCoreApplication.translate(_CONTEXT, text)
 
     def createInstance(self):
         return self.__class__()
@@ -114,9 +127,9 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             createByDefault=False))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.REPORT, self.tr("Report"), self.tr("JSON (*.json)"), optional=True, createByDefault=False))
-        for name, label in (("RMSE_PX", "RMSE of the GCPs (reference pixels)"),
-                            ("RMS_LOO_PX", "Leave-one-out RMS (reference pixels)"), ("N_GCPS", "Number of GCPs")):
-            self.addOutput(QgsProcessingOutputNumber(name, self.tr(label)))
+        self.addOutput(QgsProcessingOutputNumber("RMSE_PX", self.tr("RMSE of the GCPs (reference pixels)")))
+        self.addOutput(QgsProcessingOutputNumber("RMS_LOO_PX", self.tr("Leave-one-out RMS (reference pixels)")))
+        self.addOutput(QgsProcessingOutputNumber("N_GCPS", self.tr("Number of GCPs")))
 
     def _method_parameter(self, f):
         name, label = method_parameter_name(f.name), f.metadata.get("help", f.name)
@@ -219,10 +232,12 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
 class RegisterSiftAlgorithm(RegisterAlgorithm):
     METHOD = "sift"
     ALG_NAME = "registersift"
-    DISPLAY_NAME = "Register raster (SIFT baseline)"
-    HELP = ("Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, "
-            "Lowe's ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen "
-            "transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point "
-            "layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report."
-            "<br><br>Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, "
-            "IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94")
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("RegisterAlgorithm", "Register raster (SIFT baseline)")
+    HELP = QT_TRANSLATE_NOOP(
+        "RegisterAlgorithm",
+        "Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe's ratio "
+        "test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted "
+        "on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS "
+        "Georeferencer .points file, a VRT carrying the GCPs and a JSON report.<br><br>Reference: D. G. Lowe "
+        "(2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, "
+        "doi:10.1023/B:VISI.0000029664.99615.94")

@@ -1,0 +1,279 @@
+<?xml version='1.0' encoding='utf-8'?>
+<TS version="2.1" language="en">
+<context>
+    <name>HamtaProvider</name>
+    <message>
+        <location filename="../processing/provider.py" line="20" />
+        <source>Hamta</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/provider.py" line="23" />
+        <source>Hamta automatic georeferencing</source>
+        <translation type="unfinished" />
+    </message>
+</context>
+<context>
+    <name>RegisterAlgorithm</name>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="22" />
+        <source>Similarity (Helmert)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="22" />
+        <source>Affine (polynomial 1)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="22" />
+        <source>Projective</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="22" />
+        <source>Polynomial 2</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="22" />
+        <source>Polynomial 3</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="22" />
+        <source>Thin plate spline</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="25" />
+        <source>Nearest neighbour</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="25" />
+        <source>Bilinear</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="25" />
+        <source>Cubic</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="25" />
+        <source>Cubic B-spline</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="25" />
+        <source>Lanczos</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="28" />
+        <source>Automatic</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="28" />
+        <source>Reference pixel grid</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="28" />
+        <source>Target's native resolution</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="30" />
+        <source>Automatic (when images were decimated)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="30" />
+        <source>Always</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="30" />
+        <source>Never</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="32" />
+        <source>Use when it overlaps the reference</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="32" />
+        <source>Always use (fail otherwise)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="32" />
+        <source>Ignore</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="69" />
+        <source>Registration</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="78" />
+        <source>georeference,coregistration,registration,GCP,match,align,warp</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="83" />
+        <source>Target raster (to georeference)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="84" />
+        <source>Reference raster</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="86" />
+        <source>Transformation</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="89" />
+        <source>Resampling</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="91" />
+        <source>Target band to match (empty: luminance of RGB, else band 1)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="94" />
+        <source>Reference band to match</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="97" />
+        <source>Target's own georeferencing</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="100" />
+        <source>Output pixel grid</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="102" />
+        <source>Full-resolution refinement</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="105" />
+        <source>Working image size (pixels)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="108" />
+        <source>RANSAC tolerance (working pixels)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="111" />
+        <source>Maximum number of GCPs</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="114" />
+        <source>Random seed</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="119" />
+        <source>Georeferenced raster</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="120" />
+        <source>GCP points</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="122" />
+        <source>GCP file for the QGIS Georeferencer</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="122" />
+        <source>GCP points (*.points)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="125" />
+        <source>Target with GCPs, not resampled (VRT)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="125" />
+        <source>VRT (*.vrt)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="128" />
+        <source>Report</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="128" />
+        <source>JSON (*.json)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="130" />
+        <source>RMSE of the GCPs (reference pixels)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="131" />
+        <source>Leave-one-out RMS (reference pixels)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="132" />
+        <source>Number of GCPs</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="157" />
+        <source>{} must be a raster file GDAL can read, not a '{}' layer.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="201" />
+        <source>GCP points must be written to a GeoPackage (.gpkg) file.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="219" />
+        <source>Registration canceled; no outputs were written.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="223" />
+        <source>{} GCPs from {} matches; RMSE {:.3f} px, leave-one-out RMS {} px.</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="235" />
+        <source>Register raster (SIFT baseline)</source>
+        <translation type="unfinished" />
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="236" />
+        <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe's ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.&lt;br&gt;&lt;br&gt;Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</source>
+        <translation type="unfinished" />
+    </message>
+</context>
+</TS>

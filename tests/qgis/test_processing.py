@@ -1,0 +1,95 @@
+"""The Processing algorithm: parameters, outputs as layers, errors and cancellation."""
+import json
+import os
+import subprocess
+
+import pytest
+from qgis.core import (QgsProcessingContext, QgsProcessingException, QgsProcessingFeedback, QgsRasterLayer,
+                       QgsVectorLayer)
+
+from hamta.processing.mapping import register_settings
+
+
+
+def _run(params, feedback=None):
+    import processing
+
+    return processing.run("hamta:registersift", params, feedback=feedback or QgsProcessingFeedback())
+
+
+def test_provider_lists_the_algorithm_with_its_parameters(provider):
+    alg = provider.algorithm("registersift")
+    assert alg is not None and alg.displayName() == "Register raster (SIFT baseline)"
+    names = [p.name() for p in alg.parameterDefinitions()]
+    for name in ("TARGET", "REFERENCE", "MODEL", "RESAMPLING", "OUTPUT", "GCP_LAYER", "GCP_POINTS", "REPORT",
+                 "P_RATIO", "P_N_FEATURES"):
+        assert name in names
+    assert "Lowe" in alg.shortHelpString()
+
+
+def test_parameter_mapping_is_pure():
+    options, out = register_settings({"MODEL": 5, "RESAMPLING": 2, "GRID": 1, "REFINE": 2, "TARGET_BAND": 0,
+                                      "REFERENCE_BAND": 2, "SEED": 3, "OUTPUT": "/x/o.tif", "GCP_POINTS": ""},
+                                     "affine")
+    assert options.model == "tps" and options.refine == "off" and options.seed == 3
+    assert options.target_band is None and options.reference_band == 2
+    assert out["resampling"] == "cubic" and out["grid"] == "reference"
+    assert out["paths"].geotiff == "/x/o.tif" and out["paths"].points is None
+
+
+def test_processing_run_writes_outputs_that_load_as_layers(provider, demo_pair, tmp_path):
+    out = {"OUTPUT": str(tmp_path / "reg.tif"), "GCP_LAYER": str(tmp_path / "gcps.gpkg"),
+           "GCP_POINTS": str(tmp_path / "gcps.points"), "REPORT": str(tmp_path / "report.json")}
+    res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], MODEL=1, **out))
+    for key, path in out.items():
+        assert res[key] == path and os.path.isfile(path)
+    raster = QgsRasterLayer(res["OUTPUT"], "reg")
+    assert raster.isValid() and raster.crs().authid() == "EPSG:32639"
+    layer = QgsVectorLayer(res["GCP_LAYER"], "gcps", "ogr")
+    assert layer.isValid() and layer.crs().authid() == "EPSG:32639" and layer.featureCount() >= 50
+    assert res["N_GCPS"] >= 50 and 0 < res["RMSE_PX"] < 1.0
+    report = json.loads(open(res["REPORT"]).read())
+    assert report["model"]["type"] == "affine"
+    del raster, layer
+
+
+def test_method_parameters_reach_the_core(provider, demo_pair, tmp_path):
+    res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], P_RATIO=0.6, P_CROSS_CHECK=0,
+                    OUTPUT=str(tmp_path / "r.tif"), REPORT=str(tmp_path / "r.json")))
+    params = json.loads(open(res["REPORT"]).read())["params"]
+    assert params["ratio"] == pytest.approx(0.6) and params["cross_check"] == "none"
+
+
+def test_bad_input_raises_a_processing_exception(provider, demo_pair, tmp_path, raster_writer):
+    import numpy as np
+
+    flat = raster_writer("flat.tif", np.full((64, 64), 3, "uint8"))
+    with pytest.raises(QgsProcessingException, match="flat.tif' is constant"):
+        _run(dict(TARGET=flat, REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
+    assert not (tmp_path / "o.tif").exists()
+
+
+def test_cancel_stops_cleanly_and_writes_nothing(provider, demo_pair, tmp_path):
+    feedback = QgsProcessingFeedback()
+    feedback.progressChanged.connect(lambda p: feedback.cancel() if p > 20 else None)
+    with pytest.raises(QgsProcessingException, match="canceled"):
+        _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "o.tif"),
+                  GCP_LAYER=str(tmp_path / "g.gpkg")), feedback)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_points_file_round_trips_through_the_qgis_reader(provider, demo_pair, tmp_path):
+    from hamta.core.outputs.points import read_points
+
+    path = str(tmp_path / "g.points")
+    _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "o.tif"),
+              GCP_POINTS=path))
+    reader = os.path.join(os.path.dirname(__file__), "qgis_points_reader.py")
+    proc = subprocess.run(["/usr/bin/python3", reader, path], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    loaded = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert loaded["crs_valid"] and loaded["crs_authid"] == "EPSG:32639"
+    _, ours = read_points(path)
+    assert len(loaded["points"]) == len(ours)
+    for (mx, my, sx, sy, en), (qmx, qmy, qsx, qsy, qen) in zip(ours, loaded["points"]):
+        assert (qmx, qmy, qsx, qsy) == pytest.approx((mx, my, sx, sy), abs=1e-6) and qen == en
