@@ -6,7 +6,8 @@ VENV := .venv
 QVENV := .venv-qgis
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := qgis python3-qgis qgis-providers python3-numpy python3-scipy python3-opencv python3-rasterio \
-	python3-pyproj python3-shapely python3-pytest python3-venv python3-setuptools gdal-bin qttools5-dev-tools
+	python3-pyproj python3-shapely python3-pytest python3-venv python3-setuptools gdal-bin qttools5-dev-tools \
+	pyqt5-dev-tools
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
 .PHONY: demo test test-wheels test-debian sysdeps i18n bench clean
@@ -47,8 +48,9 @@ $(QVENV)/.ok: pyproject.toml | sysdeps
 	mkdir -p $(QVENV)/share && ln -sfn /usr/share/proj $(QVENV)/share/proj
 	touch $@
 
-# Rebuild the compiled translations from the .ts sources.
+# Collect new strings into the .ts files (existing translations are kept), then compile them.
 i18n: sysdeps
+	pylupdate5 processing/*.py plugin/*.py -ts i18n/hamta_fa.ts i18n/hamta_en.ts
 	lrelease -silent i18n/*.ts
 
 clean:

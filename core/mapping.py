@@ -1,7 +1,6 @@
 """Mapping points with the model stored in a ``report.json`` (every model type, TPS included)."""
 from __future__ import annotations
 
-import numpy as np
 from affine import Affine
 
 from .coords import as_xy, pixel_to_map

@@ -10,7 +10,7 @@ Remote Sensing 9(7):676, :DOI:`10.3390/rs9070676`), applied at feature locations
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Tuple
+from typing import Optional, Tuple
 
 import cv2
 import numpy as np
@@ -66,7 +66,7 @@ def spread_subset(xy: np.ndarray, score: np.ndarray, limit: int) -> np.ndarray:
 
 def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterInfo, target_bands,
                   reference: RasterInfo, reference_bands, params: RefineParams = RefineParams(),
-                  monitor: Monitor = Monitor()) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+                  monitor: Optional[Monitor] = None) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Refine correspondences at ``reference_xy`` (full-resolution reference px).
 
     Returns
@@ -76,6 +76,7 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
     ncc : (K,)
         Correlation peak of each kept point.
     """
+    monitor = monitor or Monitor()
     inverse = model.inverse()
     t, s = params.template_px, params.search_px
     out_t, out_r, out_c = [], [], []

@@ -19,18 +19,36 @@ from ..core.pipeline import RegisterOptions, register
 from .mapping import method_parameter_name, method_values, register_settings
 
 _CONTEXT = "RegisterAlgorithm"  # every string below is translated in this context
-MODEL_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Similarity (Helmert)"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Affine (polynomial 1)"),
-                QT_TRANSLATE_NOOP("RegisterAlgorithm", "Projective"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Polynomial 2"),
-                QT_TRANSLATE_NOOP("RegisterAlgorithm", "Polynomial 3"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Thin plate spline"))
-RESAMPLING_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Nearest neighbour"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Bilinear"),
-                     QT_TRANSLATE_NOOP("RegisterAlgorithm", "Cubic"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Cubic B-spline"),
-                     QT_TRANSLATE_NOOP("RegisterAlgorithm", "Lanczos"))
-GRID_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Automatic"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Reference pixel grid"),
-               QT_TRANSLATE_NOOP("RegisterAlgorithm", "Target's native resolution"))
-REFINE_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Automatic (when images were decimated)"),
-                 QT_TRANSLATE_NOOP("RegisterAlgorithm", "Always"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Never"))
-GEOREF_LABELS = (QT_TRANSLATE_NOOP("RegisterAlgorithm", "Use when it overlaps the reference"),
-                 QT_TRANSLATE_NOOP("RegisterAlgorithm", "Always use (fail otherwise)"), QT_TRANSLATE_NOOP("RegisterAlgorithm", "Ignore"))
+MODEL_LABELS = (
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Similarity (Helmert)"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Affine (polynomial 1)"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Projective"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Polynomial 2"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Polynomial 3"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Thin plate spline"),
+)
+RESAMPLING_LABELS = (
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Nearest neighbour"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Bilinear"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Cubic"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Cubic B-spline"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Lanczos"),
+)
+GRID_LABELS = (
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Automatic"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Reference pixel grid"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Target's native resolution"),
+)
+REFINE_LABELS = (
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Automatic (when images were decimated)"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Always"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Never"),
+)
+GEOREF_LABELS = (
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Use when it overlaps the reference"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Always use (fail otherwise)"),
+    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Ignore"),
+)
 
 
 def _advanced(p):
@@ -140,8 +158,9 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         if isinstance(f.default, bool):
             return QgsProcessingParameterBoolean(name, self.tr(label), f.default)
         if isinstance(f.default, (int, float)):
-            kind = QgsProcessingParameterNumber.Integer if isinstance(f.default, int) else QgsProcessingParameterNumber.Double
-            p = QgsProcessingParameterNumber(name, self.tr(label), kind, f.default)
+            number = QgsProcessingParameterNumber
+            p = number(name, self.tr(label), number.Integer if isinstance(f.default, int) else number.Double,
+                       f.default)
             if f.metadata.get("minimum") is not None:
                 p.setMinimum(f.metadata["minimum"])
             if f.metadata.get("maximum") is not None:
@@ -216,9 +235,9 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
                                     progress=lambda f, m: progress(0.8 + 0.2 * f, m),
                                     is_canceled=feedback.isCanceled)
         except RegistrationCanceled:
-            raise QgsProcessingException(self.tr("Registration canceled; no outputs were written."))
+            raise QgsProcessingException(self.tr("Registration canceled; no outputs were written.")) from None
         except HamtaError as exc:
-            raise QgsProcessingException(str(exc))
+            raise QgsProcessingException(str(exc)) from None
         s = result.stats
         feedback.pushInfo(self.tr("{} GCPs from {} matches; RMSE {:.3f} px, leave-one-out RMS {} px.").format(
             s["n_gcps"], s["n_matches"], s["rmse_px"], "n/a" if s["rms_loo_px"] is None else f"{s['rms_loo_px']:.3f}"))

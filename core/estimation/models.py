@@ -271,7 +271,8 @@ class ThinPlateSplineModel:
         for i in range(0, len(q), chunk):
             part = q[i:i + chunk]
             r2 = np.maximum((part ** 2).sum(axis=1)[:, None] + c2[None, :] - 2.0 * part @ c.T, 0.0)
-            out[i:i + chunk] = _tps_kernel(r2) @ self.weights + np.column_stack([np.ones(len(part)), part]) @ self.affine
+            affine = np.column_stack([np.ones(len(part)), part]) @ self.affine
+            out[i:i + chunk] = _tps_kernel(r2) @ self.weights + affine
         return out
 
     def residuals(self, src, dst) -> np.ndarray:

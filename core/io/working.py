@@ -23,7 +23,6 @@ from rasterio.crs import CRS
 from rasterio.warp import Resampling, reproject
 from rasterio.windows import Window
 from shapely.geometry import Polygon, box
-from shapely.ops import transform as shapely_transform
 
 from ..coords import as_xy, compose, map_to_pixel, pixel_to_map
 from ..errors import GeoreferencingError, InputError, NoOverlapError

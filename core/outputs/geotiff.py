@@ -167,12 +167,12 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None):
 
 
 def write_geotiff(path: str, result, resampling: str = "bilinear", grid: str = "auto",
-                  resolution: Optional[float] = None, monitor: Monitor = Monitor()) -> None:
+                  resolution: Optional[float] = None, monitor: Optional[Monitor] = None) -> None:
     """Warp every band of the target onto the output grid and write a tiled, compressed GeoTIFF."""
     if resampling not in RESAMPLING_CHOICES:
         raise ValueError(f"resampling must be one of {RESAMPLING_CHOICES}, got {resampling!r}")
+    monitor = monitor or Monitor()
     transform, width, height, crs = output_grid(result, grid, resolution)
-    t = result.target
     warp_crs = crs or _PLACEHOLDER_CRS
     with tempfile.TemporaryDirectory() as tmp:
         vrt = os.path.join(tmp, "model.vrt")

@@ -61,7 +61,9 @@ def write_points(path: str, result) -> None:
     res_ref = np.array([g.residual_xy for g in gcps], float).reshape(-1, 2)
     src = source_coordinates(result, tgt)
     dst = destination_coordinates(result, ref, mp)
-    res_tgt = np.einsum("nij,nj->ni", np.linalg.inv(local_jacobian(result.model, tgt)), res_ref) if len(tgt) else res_ref
+    res_tgt = res_ref
+    if len(tgt):
+        res_tgt = np.einsum("nij,nj->ni", np.linalg.inv(local_jacobian(result.model, tgt)), res_ref)
     lines = [crs_line(None if result.pixel_mode else result.reference.crs), HEADER]
     for i, g in enumerate(gcps):
         dx, dy = res_tgt[i, 0], -res_tgt[i, 1]

@@ -4,8 +4,7 @@ import os
 import subprocess
 
 import pytest
-from qgis.core import (QgsProcessingContext, QgsProcessingException, QgsProcessingFeedback, QgsRasterLayer,
-                       QgsVectorLayer)
+from qgis.core import QgsProcessingException, QgsProcessingFeedback, QgsRasterLayer, QgsVectorLayer
 
 from hamta.processing.mapping import register_settings
 
