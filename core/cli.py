@@ -138,6 +138,20 @@ def cmd_demo(args) -> int:
     return 0
 
 
+def cmd_bench(args) -> int:
+    from .evaluation.bench import BenchConfig, run_bench, text_tables
+    from .evaluation.families import FAMILIES
+
+    split = lambda text: tuple(x.strip() for x in text.split(",") if x.strip())  # noqa: E731
+    config = BenchConfig(methods=split(args.methods or ""), families=split(args.families) if args.families else FAMILIES,
+                         size=args.size or (512 if args.quick else 1024), quick=args.quick, jobs=args.jobs,
+                         out_dir=args.out, data_dir=args.data or "")
+    report = run_bench(config, progress=ProgressBar(not args.quiet))
+    print(text_tables(report))
+    print(f"\nwritten: {os.path.join(os.path.abspath(args.out), 'bench.json')} and bench.md")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     from .estimation.models import MODEL_CHOICES
     from .io.working import TARGET_GEOREF_CHOICES
@@ -176,6 +190,17 @@ def build_parser() -> argparse.ArgumentParser:
     m.set_defaults(func=cmd_map_points)
 
     sub.add_parser("methods", help="list the matching methods and their parameters").set_defaults(func=cmd_methods)
+
+    b = sub.add_parser("bench", help="measure methods and baselines on synthetic families and real pairs")
+    b.add_argument("--quick", action="store_true", help="a small subset at 512 px (a smoke test, ~1 min)")
+    b.add_argument("--methods", help="comma-separated methods (default: all; the SIFT baseline always runs)")
+    b.add_argument("--families", help="comma-separated families (default: all)")
+    b.add_argument("--size", type=int, default=None, help="reference size in px (default 1024; 512 with --quick)")
+    b.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel cases (default: all CPUs)")
+    b.add_argument("--out", default="bench-output", help="folder for bench.json, bench.md and the cases")
+    b.add_argument("--data", default=None, help="development data folder (default ../shared/data)")
+    b.add_argument("--quiet", action="store_true")
+    b.set_defaults(func=cmd_bench)
 
     dm = sub.add_parser("demo", help="register the bundled sample and report the true error")
     dm.add_argument("--out", default="demo-output")

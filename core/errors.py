@@ -28,6 +28,7 @@ class InsufficientMatchesError(HamtaError):
         super().__init__(message)
         self.found = found
         self.needed = needed
+        self.correspondences = None  # what the method did return, for diagnostics
 
 
 class OutputError(HamtaError, OSError):

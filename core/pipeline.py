@@ -26,7 +26,7 @@ from .io.working import TARGET_GEOREF_CHOICES, prepare_working_images
 from .methods import get_method
 from .progress import Monitor
 from .refine import RefineParams, refine_points, spread_subset
-from .result import Gcp, RegistrationResult, params_dict
+from .result import Correspondences, Gcp, RegistrationResult, params_dict
 
 REFINE_CHOICES = ("auto", "on", "off")
 
@@ -137,8 +137,13 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     need = max(options.min_inliers, MIN_POINTS[model_kind] + 2)
     linear_kind = model_kind if model_kind in ("similarity", "affine") else "projective"
     threshold = options.ransac_threshold_px * ref.source_px_per_working_px
-    linear, inliers = _robust_linear(tgt_px, ref_px, linear_kind, threshold, options.seed, need, spec.name,
-                                     tgt_info.path)
+    try:
+        linear, inliers = _robust_linear(tgt_px, ref_px, linear_kind, threshold, options.seed, need, spec.name,
+                                         tgt_info.path)
+    except InsufficientMatchesError as exc:
+        exc.correspondences = Correspondences(tgt_px, ref_px, score, np.zeros(len(tgt_px), bool))
+        raise
+    raw = Correspondences(tgt_px, ref_px, score, inliers)
     clock.lap("estimate")
     monitor.report(0.75, "refining")
 
@@ -168,7 +173,7 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     clock.lap("fit")
 
     result = _assemble(spec, params, options, model_kind, model, tgt_info, ref_info, plan, tgt_px, ref_px, score,
-                       inliers, used, matches, refined, notes, clock)
+                       inliers, used, matches, raw, refined, notes, clock)
     monitor.report(1.0, "done")
     return result
 
@@ -220,7 +225,7 @@ def _final_fit(kind, tgt_px, ref_px, score, inliers, threshold, max_gcps, frame)
 
 
 def _assemble(spec, params, options, kind, model, tgt_info, ref_info, plan, tgt_px, ref_px, score, inliers, used,
-              matches, refined, notes, clock):
+              matches, raw, refined, notes, clock):
     pixel_mode = not ref_info.georeferenced
     to_map = (lambda xy: xy) if pixel_mode else (lambda xy: pixel_to_map(ref_info.transform, xy))
     res = model.apply(tgt_px) - ref_px if len(tgt_px) else np.zeros((0, 2))
@@ -235,7 +240,8 @@ def _assemble(spec, params, options, kind, model, tgt_info, ref_info, plan, tgt_
     loo = model.loo_residuals(tgt_px[used], ref_px[used])
     stats = {
         "n_keypoints_target": int(matches.n_target), "n_keypoints_reference": int(matches.n_reference),
-        "n_matches": int(len(matches)), "n_inliers": int(inliers.sum()), "n_gcps": int(len(used)),
+        "n_matches": int(len(matches)), "n_inliers": int(raw.inlier.sum()), "n_gcps": int(len(used)),
+        "n_refined": int(len(tgt_px)) if refined else 0,
         "rmse_px": float(np.sqrt(np.mean(used_res ** 2))),
         "rms_loo_px": float(np.sqrt(np.nanmean(loo ** 2))) if np.isfinite(loo).any() else None,
         "max_residual_px": float(used_res.max()),
@@ -246,7 +252,7 @@ def _assemble(spec, params, options, kind, model, tgt_info, ref_info, plan, tgt_
     return RegistrationResult(
         method=spec.name, params=params_dict(params), options=options_dict, model=model, target=tgt_info,
         reference=ref_info, plan=plan, gcps=gcps, stats=stats, timings=clock.as_dict(), notes=notes,
-        diagnostics=dict(matches.diagnostics or {}),
+        diagnostics=dict(matches.diagnostics or {}), correspondences=raw,
     )
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 import dataclasses
 import platform
 from dataclasses import dataclass, field
-from typing import List
+from typing import List, Optional
 
 import numpy as np
 
@@ -37,6 +37,20 @@ class Gcp:
 
 
 @dataclass(frozen=True, eq=False)
+class Correspondences:
+    """Every correspondence the method returned, in full-resolution target and reference pixels,
+    with its score and whether the robust fit kept it (before any refinement)."""
+
+    target_px: np.ndarray
+    reference_px: np.ndarray
+    score: np.ndarray
+    inlier: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.target_px)
+
+
+@dataclass(frozen=True, eq=False)
 class RegistrationResult:
     """Everything a registration produced, before any file is written.
 
@@ -56,6 +70,7 @@ class RegistrationResult:
     timings: dict
     notes: List[str] = field(default_factory=list)
     diagnostics: dict = field(default_factory=dict)
+    correspondences: Optional[Correspondences] = None
 
     @property
     def pixel_mode(self) -> bool:

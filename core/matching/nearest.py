@@ -40,11 +40,13 @@ def match_features(a: Features, b: Features, *, ratio: float = 0.8, cross_check:
         return empty
     ia, ib, d1, d2 = _two_nearest(a.descriptors, b.descriptors, a.metric)
     keep = d1 < ratio * d2 if ratio < 1.0 else np.ones(len(ia), bool)
-    if cross_check != "none":
-        jb, ja, e1, e2 = _two_nearest(b.descriptors, a.descriptors, a.metric)
+    if cross_check != "none" and keep.any():
+        # Only the b points some a point chose need their own nearest neighbours in a.
+        cand = np.unique(ib[keep])
+        jb, ja, e1, e2 = _two_nearest(b.descriptors[cand], a.descriptors, a.metric)
         back = np.full(len(b), -1)
         back_ok = np.ones(len(jb), bool) if cross_check == "mutual" or ratio >= 1.0 else e1 < ratio * e2
-        back[jb[back_ok]] = ja[back_ok]
+        back[cand[jb[back_ok]]] = ja[back_ok]
         keep &= back[ib] == ia
     ia, ib = ia[keep], ib[keep]
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -116,4 +116,4 @@ def all_methods() -> Dict[str, Method]:
 
 def _load_builtin() -> None:
     if not _REGISTRY:
-        from . import sift  # noqa: F401  (registers itself)
+        from . import orb, phasecorr, sift  # noqa: F401  (each registers itself)

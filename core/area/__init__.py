@@ -1,0 +1,1 @@
+"""Area-based (intensity/frequency-domain) matching."""

@@ -1,0 +1,266 @@
+"""``hamta bench``: every method and baseline on the synthetic families and the real pairs.
+
+Each case is generated once, then every selected method registers it through the public
+``register`` entry point (the one the CLI and Processing call) in the same worker process, one
+after the other, so per-case time ratios to the SIFT baseline compare like with like. The
+returned mapping is judged against ground truth (:mod:`hamta.core.evaluation.metrics`).
+"""
+from __future__ import annotations
+
+import concurrent.futures as cf
+import datetime
+import json
+import math
+import multiprocessing
+import os
+import platform
+import resource
+import threading
+import time
+from dataclasses import asdict, dataclass
+from typing import Callable, Dict, List, Optional, Sequence
+
+import numpy as np
+
+from ..errors import HamtaError
+from ..methods import all_methods
+from ..pipeline import RegisterOptions, register
+from .families import FAMILIES, CaseSpec, available, build_case, default_data_dir, family_specs
+from .metrics import judge
+
+BASELINE = "sift"
+
+
+@dataclass(frozen=True)
+class BenchConfig:
+    """What to run. ``size`` is the reference's longest side in pixels for synthetic cases."""
+
+    methods: Sequence[str] = ()
+    families: Sequence[str] = FAMILIES
+    size: int = 1024
+    quick: bool = False
+    jobs: int = 1
+    out_dir: str = "bench-output"
+    data_dir: str = ""
+
+    def resolved(self) -> "BenchConfig":
+        methods = [m for m in (self.methods or all_methods()) if m != BASELINE]
+        methods.insert(0, BASELINE)  # the baseline always runs, first, so ratios have a reference
+        unknown = [f for f in self.families if f not in FAMILIES]
+        if unknown:
+            raise ValueError(f"unknown famil{'y' if len(unknown) == 1 else 'ies'} {', '.join(unknown)}; "
+                             f"choose from {', '.join(FAMILIES)}")
+        for m in methods:
+            if m not in all_methods():
+                raise ValueError(f"unknown method {m!r}; available: {', '.join(all_methods())}")
+        return BenchConfig(tuple(methods), tuple(self.families), self.size, self.quick, max(1, self.jobs),
+                           os.path.abspath(self.out_dir), self.data_dir or default_data_dir())
+
+
+class _PeakRss:
+    """Peak resident memory of this process during a block (exact when it sets a new process peak,
+    else sampled every 5 ms)."""
+
+    def __enter__(self):
+        self.start_max = _maxrss_mb()
+        self.peak = _rss_mb()
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._sample, daemon=True)
+        self._thread.start()
+        return self
+
+    def _sample(self):
+        while not self._stop.wait(0.005):
+            self.peak = max(self.peak, _rss_mb())
+
+    def __exit__(self, *exc):
+        self._stop.set()
+        self._thread.join()
+        end_max = _maxrss_mb()
+        self.peak = end_max if end_max > self.start_max else max(self.peak, _rss_mb())
+        return False
+
+
+def _rss_mb() -> float:
+    try:
+        with open("/proc/self/statm") as f:
+            return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") / 2 ** 20
+    except OSError:
+        return _maxrss_mb()
+
+
+def _maxrss_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def run_case(spec: CaseSpec, config: BenchConfig) -> List[dict]:
+    """Build one case and register it with every method; one result row per method."""
+    folder = os.path.join(config.out_dir, "cases", spec.family)
+    case = build_case(spec, folder, config.size, config.data_dir)
+    rows = []
+    for method in config.methods:
+        options = RegisterOptions(model=spec.model)
+        result, error = None, None
+        t0 = time.perf_counter()
+        with _PeakRss() as mem:
+            try:
+                result = register(case.target, case.reference, method, options=options)
+            except (HamtaError, ValueError, np.linalg.LinAlgError) as exc:
+                error = exc
+        wall = time.perf_counter() - t0
+        row = {"family": spec.family, "case": spec.name, "method": method, "model": spec.model,
+               "tolerance_px": case.tolerance_px, "n_check_points": int(len(case.check_points)),
+               "time_s": result.timings["total"] if result is not None else wall,
+               "timings_s": result.timings if result is not None else {"total": wall},
+               "peak_rss_mb": round(mem.peak, 1)}
+        row.update(judge(case, result, error))
+        rows.append(row)
+    return rows
+
+
+def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], None]] = None) -> dict:
+    """Run the benchmark; write ``bench.json`` and ``bench.md`` into ``config.out_dir``; return the report."""
+    config = config.resolved()
+    os.makedirs(config.out_dir, exist_ok=True)
+    notes, specs = [], []
+    for fam in config.families:
+        if not available(fam, config.data_dir):
+            notes.append(f"family '{fam}' skipped: no development data at {config.data_dir}")
+            continue
+        specs.extend(family_specs(fam, config.quick))
+    t0 = time.perf_counter()
+    rows: List[dict] = []
+    done = 0
+    for batch in _execute(specs, config):
+        rows.extend(batch)
+        done += 1
+        if progress:
+            progress(done / max(len(specs), 1), f"{done}/{len(specs)} cases")
+    rows.sort(key=lambda r: (FAMILIES.index(r["family"]), r["case"], list(config.methods).index(r["method"])))
+    report = {
+        "meta": {"date": datetime.datetime.now().isoformat(timespec="seconds"), "duration_s": round(
+            time.perf_counter() - t0, 1), "config": {k: list(v) if isinstance(v, tuple) else v
+                                                    for k, v in asdict(config).items()},
+                 "machine": {"cpus": os.cpu_count(), "platform": platform.platform()}, "versions": _versions(),
+                 "notes": notes},
+        "summary": summarise(rows, config.methods),
+        "cases": rows,
+    }
+    with open(os.path.join(config.out_dir, "bench.json"), "w") as f:
+        json.dump(report, f, indent=1, allow_nan=False, default=_json_default)
+    with open(os.path.join(config.out_dir, "bench.md"), "w") as f:
+        f.write(markdown(report))
+    return report
+
+
+def _json_default(v):
+    if isinstance(v, (np.floating, np.integer)):
+        return v.item()
+    raise TypeError(type(v))
+
+
+def _versions() -> dict:
+    from ..result import versions
+
+    return versions()
+
+
+def _execute(specs, config):
+    if config.jobs <= 1 or len(specs) <= 1:
+        for spec in specs:
+            yield run_case(spec, config)
+        return
+    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
+    with cf.ProcessPoolExecutor(config.jobs, mp_context=multiprocessing.get_context(method)) as pool:
+        futures = [pool.submit(run_case, spec, config) for spec in specs]
+        for fut in cf.as_completed(futures):
+            yield fut.result()
+
+
+def _median(values):
+    v = [x for x in values if x is not None]
+    return float(np.median(v)) if v else None
+
+
+def _p90(values):
+    v = [x for x in values if x is not None]
+    return float(np.percentile(v, 90)) if v else None
+
+
+def summarise(rows: List[dict], methods: Sequence[str]) -> Dict[str, Dict[str, dict]]:
+    """Per family and method: success rate, median/p90 check-point RMSE of successes, median NCM,
+    precision, time, peak memory, and the median per-case time ratio to the SIFT baseline."""
+    out: Dict[str, Dict[str, dict]] = {}
+    baseline = {(r["family"], r["case"]): r["time_s"] for r in rows if r["method"] == BASELINE}
+    for fam in dict.fromkeys(r["family"] for r in rows):
+        out[fam] = {}
+        for m in methods:
+            rs = [r for r in rows if r["family"] == fam and r["method"] == m]
+            if not rs:
+                continue
+            ok = [r for r in rs if r["success"]]
+            ratios = [r["time_s"] / baseline[(fam, r["case"])] for r in rs
+                      if baseline.get((fam, r["case"])) and m != BASELINE]
+            out[fam][m] = {
+                "n_cases": len(rs), "n_success": len(ok), "success_rate": len(ok) / len(rs),
+                "median_rmse_cp": _median([r["rmse_cp"] for r in ok]), "p90_rmse_cp": _p90([r["rmse_cp"] for r in ok]),
+                "median_ncm": _median([r["ncm"] for r in rs]), "median_precision": _median([r["precision"] for r in rs]),
+                "median_time_s": _median([r["time_s"] for r in rs]),
+                "time_ratio_to_sift": 1.0 if m == BASELINE else _median(ratios),
+                "median_peak_rss_mb": _median([r["peak_rss_mb"] for r in rs]),
+            }
+    return out
+
+
+COLUMNS = [("method", "method"), ("success", "success"), ("median_rmse_cp", "RMSE_cp med"),
+           ("p90_rmse_cp", "RMSE_cp p90"), ("median_ncm", "NCM med"), ("median_precision", "precision med"),
+           ("median_time_s", "time med (s)"), ("time_ratio_to_sift", "time / SIFT"), ("median_peak_rss_mb", "peak MB")]
+
+
+def _cells(method: str, s: dict) -> List[str]:
+    def num(v, fmt):
+        return "–" if v is None or (isinstance(v, float) and math.isnan(v)) else format(v, fmt)
+
+    return [method, f"{s['n_success']}/{s['n_cases']} ({100 * s['success_rate']:.0f}%)",
+            num(s["median_rmse_cp"], ".3f"), num(s["p90_rmse_cp"], ".3f"), num(s["median_ncm"], ".0f"),
+            num(s["median_precision"], ".2f"), num(s["median_time_s"], ".2f"), num(s["time_ratio_to_sift"], ".2f"),
+            num(s["median_peak_rss_mb"], ".0f")]
+
+
+def text_tables(report: dict) -> str:
+    """The summary as aligned plain-text tables, one per family."""
+    lines = []
+    for fam, per_method in report["summary"].items():
+        n = next(iter(per_method.values()))["n_cases"]
+        rows = [[h for _, h in COLUMNS]] + [_cells(m, s) for m, s in per_method.items()]
+        widths = [max(len(r[i]) for r in rows) for i in range(len(COLUMNS))]
+        lines.append(f"\n{fam} ({n} case{'s' if n != 1 else ''})")
+        for i, r in enumerate(rows):
+            lines.append("  ".join(c.ljust(w) if j == 0 else c.rjust(w) for j, (c, w) in enumerate(zip(r, widths))))
+            if i == 0:
+                lines.append("  ".join("-" * w for w in widths))
+    meta = report["meta"]
+    lines.append(f"\n{sum(len(v) for v in report['summary'].values())} method/family cells, "
+                 f"{len(report['cases'])} registrations in {meta['duration_s']} s")
+    lines.extend(f"note: {n}" for n in meta["notes"])
+    return "\n".join(lines)
+
+
+def markdown(report: dict) -> str:
+    """The summary as Markdown (one table per family) with the run's settings."""
+    meta = report["meta"]
+    cfg = meta["config"]
+    out = [f"# hamta bench — {meta['date']}", "",
+           f"size {cfg['size']} px, quick={cfg['quick']}, jobs={cfg['jobs']}, methods: {', '.join(cfg['methods'])}; "
+           f"{len(report['cases'])} registrations in {meta['duration_s']} s on {meta['machine']['cpus']} CPUs; "
+           f"hamta {meta['versions']['hamta']}, OpenCV {meta['versions']['opencv']}, GDAL {meta['versions']['gdal']}.",
+           "", "Success: check-point RMSE ≤ 3 px (real pairs: their own tolerance). RMSE_cp statistics are over "
+           "successful cases only. NCM: returned matches within 3 px of the truth. time / SIFT: median per-case "
+           "ratio to the SIFT baseline in the same run.", ""]
+    out.extend(f"> {n}" for n in meta["notes"])
+    for fam, per_method in report["summary"].items():
+        n = next(iter(per_method.values()))["n_cases"]
+        out += ["", f"## {fam} ({n} case{'s' if n != 1 else ''})", "",
+                "| " + " | ".join(h for _, h in COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
+        out += ["| " + " | ".join(_cells(m, s)) + " |" for m, s in per_method.items()]
+    return "\n".join(out) + "\n"

@@ -1,0 +1,289 @@
+"""The synthetic families of EVALUATION.md and the real development pairs, as benchmark cases.
+
+Every case is generated deterministically from a named source image at a chosen size (the
+reference's longest side in pixels) with a seed derived from its name. Sources: the Landsat
+sample and the development images in ``../shared/data`` (real imagery), and the self-generated
+farmland scene; a missing data folder falls back to the generated scene, with a note.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import zlib
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import List
+
+import cv2
+import numpy as np
+from affine import Affine
+
+from ..coords import apply_matrix, compose
+from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
+from .synthetic import make_landscape
+
+FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs")
+SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
+                "sar": "pairs/sar-optical_1.jpg"}
+
+
+@dataclass(frozen=True)
+class CaseSpec:
+    family: str
+    name: str
+    params: dict = field(default_factory=dict)
+
+    @property
+    def model(self) -> str:
+        """The model a user would choose for this family's geometry."""
+        return "projective" if self.family == "affine" and self.params.get("persp") else "affine"
+
+    @property
+    def seed(self) -> int:
+        return zlib.crc32(f"{self.family}/{self.name}".encode())
+
+
+def default_data_dir() -> str:
+    here = os.path.dirname(os.path.abspath(__file__))
+    repo = os.path.dirname(os.path.dirname(here))
+    return os.environ.get("HAMTA_SHARED_DATA", os.path.join(os.path.dirname(repo), "shared", "data"))
+
+
+# ----------------------------------------------------------------------------------------------
+# Sources
+# ----------------------------------------------------------------------------------------------
+
+@lru_cache(maxsize=8)
+def load_source(name: str, size: int, data_dir: str) -> Canvas:
+    """Source image ``name`` resized so that its longest side is ``size`` px (georeferencing kept
+    or, for plain images, a nominal 10 m UTM 39N grid so that references are georeferenced)."""
+    path = os.path.join(data_dir, SOURCE_FILES[name]) if name in SOURCE_FILES else None
+    if path is None or not os.path.exists(path):
+        return _landscape(size)
+    canvas = read_canvas(path)
+    if canvas.data.shape[0] == 3 and name != "landsat":
+        canvas = Canvas(canvas.data.mean(axis=0, keepdims=True), canvas.valid, canvas.crs, canvas.transform,
+                        canvas.dtype)
+    return _resized(canvas, size)
+
+
+def _landscape(size: int) -> Canvas:
+    data = make_landscape((size, size), seed=7).astype(np.float32)
+    return Canvas(data, np.ones((size, size), bool), "EPSG:32639", Affine(10.0, 0, 552000.0, 0, -10.0, 3620000.0))
+
+
+def _resized(canvas: Canvas, size: int) -> Canvas:
+    h, w = canvas.shape
+    f = size / max(h, w)
+    nw, nh = int(round(w * f)), int(round(h * f))
+    interp = cv2.INTER_CUBIC if f > 1 else cv2.INTER_AREA
+    data = np.stack([cv2.resize(b, (nw, nh), interpolation=interp) for b in canvas.data])
+    valid = cv2.resize(canvas.valid.astype(np.uint8), (nw, nh), interpolation=cv2.INTER_NEAREST) > 0
+    valid = cv2.erode(valid.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0  # no interpolation fringe
+    crs = canvas.crs or "EPSG:32639"
+    tr = canvas.transform or Affine(10.0, 0, 552000.0, 0, -10.0, 3620000.0)
+    tr = compose(tr, Affine.scale(w / nw, h / nh))
+    return Canvas(data.astype(np.float32), valid, crs, tr, canvas.dtype)
+
+
+# ----------------------------------------------------------------------------------------------
+# Geometry and radiometry
+# ----------------------------------------------------------------------------------------------
+
+def target_matrix(target_shape, canvas_centre, *, angle_deg=0.0, scale=1.0, shear=0.0, aniso=1.0, persp=(0.0, 0.0),
+                  shift=(0.0, 0.0)) -> np.ndarray:
+    """Target px -> canvas px: about the target centre, ``scale`` target px per canvas px, rotation
+    (clockwise as displayed), shear, anisotropy and a perspective term in 1/target-size units."""
+    h, w = target_shape
+    a = math.radians(angle_deg)
+    rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+    lin = rot @ np.array([[1.0, shear], [0.0, 1.0]]) @ np.diag([aniso, 1.0 / aniso]) / scale
+    centre_t = np.array([[1.0, 0, -w / 2.0], [0, 1.0, -h / 2.0], [0, 0, 1.0]])
+    proj = np.eye(3)
+    proj[:2, :2] = lin
+    proj[2, :2] = np.asarray(persp, float) / max(h, w)
+    to_canvas = np.array([[1.0, 0, canvas_centre[0] + shift[0]], [0, 1.0, canvas_centre[1] + shift[1]], [0, 0, 1.0]])
+    return to_canvas @ proj @ centre_t
+
+
+def gamma(g):
+    return lambda v, rng: 255.0 * np.clip(v / 255.0, 0, 1) ** g
+
+
+def gain_offset(a, b):
+    return lambda v, rng: a * v + b
+
+
+def speckle(looks):
+    """Multiplicative Gamma speckle with ``looks`` looks on intensity; returns amplitude."""
+    def apply(v, rng):
+        intensity = np.maximum(v, 0.0) ** 2
+        return np.sqrt(intensity * rng.gamma(looks, 1.0 / looks, size=v.shape)).astype(np.float32)
+    return apply
+
+
+def nonlinear(kind: str, looks=None):
+    """Multimodal proxy: a non-linear intensity mapping (some invert contrast), then optional speckle."""
+    maps = {
+        "invert": lambda u: 1.0 - u,
+        "sqrt-invert": lambda u: 1.0 - np.sqrt(u),
+        "fold": lambda u: np.abs(u - 0.5) * 2.0,  # non-monotonic: dark and bright become alike
+        "sigmoid-invert": lambda u: 1.0 / (1.0 + np.exp(12.0 * (u - 0.5))),
+    }
+
+    def apply(v, rng):
+        u = np.clip(v / 255.0, 0, 1)
+        out = 255.0 * maps[kind](u)
+        return speckle(looks)(out, rng) if looks else out
+    return apply
+
+
+# ----------------------------------------------------------------------------------------------
+# Families
+# ----------------------------------------------------------------------------------------------
+
+def family_specs(family: str, quick: bool = False) -> List[CaseSpec]:
+    """The cases of ``family`` (a short subset with ``quick``)."""
+    return _SPECS[family](quick)
+
+
+def _rotation(quick):
+    angles = (10, 90) if quick else (0, 10, 30, 45, 90, 135, 180)
+    radios = ("none",) if quick else ("none", "gamma")
+    sources = ("landsat",) if quick else ("landsat", "multitemporal")
+    return [CaseSpec("rotation", f"{src}_rot{a}_{r}", {"source": src, "angle": a, "radiometry": r})
+            for src in sources for a in angles for r in radios]
+
+
+def _scale(quick):
+    scales = (0.7, 1.4) if quick else (0.5, 0.7, 1.0, 1.4, 2.0)
+    sources = ("landsat",) if quick else ("landsat", "landscape")
+    return [CaseSpec("scale", f"{src}_scale{s}", {"source": src, "scale": s}) for src in sources for s in scales]
+
+
+def _affine(quick):
+    combos = [(0.05, 0.0), (0.10, 0.0), (0.15, 0.0), (0.05, 0.15), (0.10, 0.25), (0.15, 0.35)]
+    combos = combos[2:3] if quick else combos
+    return [CaseSpec("affine", f"{'landsat' if i % 2 == 0 else 'landscape'}_shear{sh}_persp{p}",
+                     {"source": "landsat" if i % 2 == 0 else "landscape", "shear": sh, "persp": p})
+            for i, (sh, p) in enumerate(combos)]
+
+
+def _overlap(quick):
+    fractions = (0.6,) if quick else (1.0, 0.9, 0.75, 0.6, 0.5)
+    sources = ("landsat",) if quick else ("landsat", "multitemporal")
+    return [CaseSpec("overlap", f"{src}_overlap{f}", {"source": src, "fraction": f})
+            for src in sources for f in fractions]
+
+
+def _speckle(quick):
+    geoms = ((10, 0.8),) if quick else ((10, 0.8), (30, 1.25))
+    looks = (1,) if quick else (1, 4)
+    sources = ("landsat",) if quick else ("landsat", "sar")
+    return [CaseSpec("speckle", f"{src}_L{L}_rot{a}_scale{s}", {"source": src, "looks": L, "angle": a, "scale": s})
+            for src in sources for L in looks for a, s in geoms]
+
+
+def _multimodal(quick):
+    kinds = ("invert",) if quick else ("invert", "sqrt-invert", "fold", "sigmoid-invert")
+    sources = ("landsat",) if quick else ("landsat", "multitemporal")
+    return [CaseSpec("multimodal", f"{src}_{k}", {"source": src, "mapping": k}) for src in sources for k in kinds]
+
+
+def _georeferenced(quick):
+    combos = [("landsat", "EPSG:4326", (35, -22)), ("landsat", "EPSG:3857", (-28, 40)),
+              ("landsat", "EPSG:32617", (60, 15)), ("landscape", "EPSG:32640", (-45, -30)),
+              ("landscape", "EPSG:4326", (25, 50)), ("landscape", "EPSG:3857", (-70, 10))]
+    combos = combos[:1] if quick else combos
+    return [CaseSpec("georeferenced", f"{src}_{crs.replace(':', '')}", {"source": src, "crs": crs, "shift": sh})
+            for src, crs, sh in combos]
+
+
+def _pairs(quick):
+    return [CaseSpec("pairs", "multitemporal", {"pair": "multitemporal"}),
+            CaseSpec("pairs", "sar_optical", {"pair": "sar_optical"})]
+
+
+_SPECS = {"rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
+          "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs}
+
+
+# ----------------------------------------------------------------------------------------------
+# Building cases
+# ----------------------------------------------------------------------------------------------
+
+def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
+    """Write the case's rasters into ``folder`` and return it."""
+    p = spec.params
+    rng = np.random.default_rng(spec.seed)
+    name = f"{spec.family}_{spec.name}"
+    if spec.family == "pairs":
+        return _pair_case(p["pair"], data_dir)
+    canvas = load_source(p["source"], size, data_dir)
+    ch, cw = canvas.shape
+    centre = (cw / 2.0, ch / 2.0)
+    info = {"family": spec.family, **p}
+    if spec.family == "georeferenced":
+        return reprojected_case(folder, None, dst_crs=p["crs"], shift_px=p["shift"], name=name, canvas=canvas)
+    if spec.family == "overlap":
+        return _overlap_case(folder, name, canvas, p["fraction"], rng, info)
+    shift = tuple(rng.uniform(-20, 20, 2))
+    shape, kw, radio, dtype = (ch, cw), {}, None, None
+    if spec.family == "rotation":
+        kw = {"angle_deg": p["angle"]}
+        radio = gamma(0.6) if p["radiometry"] == "gamma" else None
+    elif spec.family == "scale":
+        kw = {"angle_deg": float(rng.uniform(0, 30)), "scale": p["scale"]}
+        shape = (int(round(ch * p["scale"])), int(round(cw * p["scale"])))
+    elif spec.family == "affine":
+        kw = {"angle_deg": float(rng.uniform(0, 20)), "scale": float(rng.uniform(0.85, 1.15)), "shear": p["shear"],
+              "aniso": float(rng.uniform(0.9, 1.1)), "persp": tuple(rng.choice([-1, 1], 2) * p["persp"])}
+        radio = gain_offset(float(rng.uniform(0.7, 1.3)), float(rng.uniform(-20, 20)))
+    elif spec.family == "speckle":
+        kw = {"angle_deg": p["angle"], "scale": p["scale"]}
+        shape = (int(round(ch * p["scale"])), int(round(cw * p["scale"])))
+        radio, dtype = speckle(p["looks"]), "float32"
+    elif spec.family == "multimodal":
+        kw = {"angle_deg": float(rng.uniform(0, 30)), "scale": float(rng.uniform(0.7, 1.4))}
+        shape = (int(round(ch * kw["scale"])), int(round(cw * kw["scale"])))
+        radio, dtype = nonlinear(p["mapping"], looks=1), "float32"
+    info.update({k: v for k, v in kw.items()})
+    g = target_matrix(shape, centre, shift=shift, **kw)
+    ref_radio = speckle(p["looks"]) if spec.family == "speckle" else None
+    return warped_case(folder, name, canvas, g, shape, reference_radiometry=ref_radio, target_radiometry=radio,
+                       dtype=dtype, seed=spec.seed, info=info)
+
+
+def _overlap_case(folder, name, canvas, fraction, rng, info):
+    """Reference and target are shifted crops of a larger canvas overlapping by ``fraction``."""
+    ch, cw = canvas.shape
+    rh, rw = int(0.6 * ch), int(0.6 * cw)
+    c0, r0 = int(0.2 * cw), int(0.2 * ch)
+    k = 1.0 - math.sqrt(fraction)
+    dx, dy = rng.choice([-1, 1], 2) * np.array([k * rw, k * rh])
+    angle = float(rng.uniform(0, 10))
+    centre = (c0 + rw / 2.0 + dx, r0 + rh / 2.0 + dy)
+    g = target_matrix((rh, rw), centre, angle_deg=angle)
+    return warped_case(folder, name, canvas, g, (rh, rw), ref_window=(c0, r0, rw, rh), seed=int(rng.integers(1 << 30)),
+                       info=dict(info, angle_deg=angle, shift=[float(dx), float(dy)]))
+
+
+def _pair_case(pair_id: str, data_dir: str) -> Case:
+    folder = os.path.join(data_dir, "pairs")
+    with open(os.path.join(folder, "ground_truth.json")) as f:
+        pair = next(p for p in json.load(f)["pairs"] if p["id"] == pair_id)
+    pts = np.asarray(pair["points"], float)
+    h = np.asarray(pair["H_a_to_b"], float)
+    return Case(f"pairs_{pair_id}", os.path.join(folder, pair["a"]), os.path.join(folder, pair["b"]),
+                lambda p: apply_matrix(h, p), pts[:, :2], pts[:, 2:], float(pair.get("success_tol_px", 3.0)),
+                info={"family": "pairs", "modality": pair.get("modality"), "confidence_px": pair.get("confidence_px")})
+
+
+def available(family: str, data_dir: str) -> bool:
+    """Whether a family can run (the real pairs need the data folder)."""
+    if family == "pairs":
+        return os.path.exists(os.path.join(data_dir, "pairs", "ground_truth.json"))
+    return True
+
+

@@ -1,0 +1,30 @@
+"""Judging a registration against ground truth (definitions of EVALUATION.md)."""
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+
+CORRECT_MATCH_PX = 3.0
+
+
+def judge(case, result=None, error: Optional[BaseException] = None) -> dict:
+    """Metrics of one registration of ``case``: the returned mapping's check-point error, the
+    method's correct matches, and the self-reported figures. ``result`` is None on failure.
+    A method that returned no matches has precision 0."""
+    row = {"success": False, "rmse_cp": None, "max_cp": None, "ncm": 0, "n_matches": 0, "precision": 0.0,
+           "rmse_px": None, "rms_loo_px": None, "n_gcps": 0, "error": None}
+    corr = result.correspondences if result is not None else getattr(error, "correspondences", None)
+    if corr is not None and len(corr):
+        err = np.linalg.norm(case.truth(corr.target_px) - corr.reference_px, axis=1)
+        row["ncm"] = int((err <= CORRECT_MATCH_PX).sum())
+        row["n_matches"] = int(len(corr))
+        row["precision"] = row["ncm"] / len(corr)
+    if result is None:
+        row["error"] = f"{type(error).__name__}: {error}" if error is not None else "no result"
+        return row
+    e = case.errors(result.model)
+    rmse = float(np.sqrt(np.mean(e ** 2)))
+    row.update(rmse_cp=rmse, max_cp=float(e.max()), success=bool(rmse <= case.tolerance_px),
+               rmse_px=result.stats["rmse_px"], rms_loo_px=result.stats["rms_loo_px"], n_gcps=result.stats["n_gcps"])
+    return row

@@ -1,0 +1,62 @@
+"""``hamta bench``: the quick run as a smoke test with real assertions, and the table logic."""
+import json
+
+import pytest
+
+from hamta.core.cli import main
+from hamta.core.evaluation.bench import BenchConfig, summarise
+from hamta.core.evaluation.families import FAMILIES, build_case, family_specs
+
+
+def test_quick_bench_runs_every_family_and_the_baselines_succeed_on_easy_cases(tmp_path, shared, capsys):
+    out = tmp_path / "bench"
+    assert main(["bench", "--quick", "--jobs", "2", "--out", str(out), "--data", str(shared / "data"),
+                 "--quiet"]) == 0
+    printed = capsys.readouterr().out
+    report = json.loads((out / "bench.json").read_text())
+    summary = report["summary"]
+    assert set(summary) == set(FAMILIES)
+    assert {"sift", "orb", "phasecorr"} <= set(summary["rotation"])
+    for family in ("rotation", "scale", "affine", "overlap", "georeferenced"):
+        s = summary[family]["sift"]
+        assert s["success_rate"] == 1.0 and s["median_rmse_cp"] < 0.3, (family, s)
+        assert s["median_precision"] > 0.9
+    assert summary["rotation"]["orb"]["success_rate"] == 1.0
+    assert summary["overlap"]["phasecorr"]["success_rate"] == 1.0  # a pure shift (plus < 10 degrees rotation)
+    assert summary["rotation"]["phasecorr"]["success_rate"] == 0.0  # no rotation invariance, honestly reported
+    mt = next(r for r in report["cases"] if r["case"] == "multitemporal" and r["method"] == "sift")
+    assert mt["success"] and mt["rmse_cp"] < 1.0  # the real pair's ground truth is good to ~0.7 px
+    assert all(r["time_s"] > 0 and r["peak_rss_mb"] > 0 for r in report["cases"])
+    assert "time / SIFT" in printed and (out / "bench.md").read_text().startswith("# hamta bench")
+
+
+def test_cases_are_deterministic(tmp_path, shared):
+    spec = family_specs("speckle", quick=True)[0]
+    a = build_case(spec, str(tmp_path / "a"), 256, str(shared / "data"))
+    b = build_case(spec, str(tmp_path / "b"), 256, str(shared / "data"))
+    assert open(a.target, "rb").read() == open(b.target, "rb").read()
+    assert (a.check_points == b.check_points).all()
+
+
+def test_summary_counts_failures_once_and_ratios_per_case():
+    rows = [
+        {"family": "f", "case": "a", "method": "sift", "success": True, "rmse_cp": 0.2, "ncm": 10, "precision": 1.0,
+         "time_s": 2.0, "peak_rss_mb": 100},
+        {"family": "f", "case": "b", "method": "sift", "success": True, "rmse_cp": 0.4, "ncm": 8, "precision": 0.8,
+         "time_s": 4.0, "peak_rss_mb": 100},
+        {"family": "f", "case": "a", "method": "x", "success": True, "rmse_cp": 0.1, "ncm": 5, "precision": 0.5,
+         "time_s": 1.0, "peak_rss_mb": 50},
+        {"family": "f", "case": "b", "method": "x", "success": False, "rmse_cp": 40.0, "ncm": 0, "precision": 0.0,
+         "time_s": 1.0, "peak_rss_mb": 50},
+    ]
+    s = summarise(rows, ["sift", "x"])["f"]
+    assert s["x"]["success_rate"] == 0.5 and s["x"]["median_rmse_cp"] == 0.1  # the failure is not averaged in
+    assert s["x"]["time_ratio_to_sift"] == pytest.approx(0.375)  # median of 1/2 and 1/4
+    assert s["sift"]["median_rmse_cp"] == pytest.approx(0.3)
+
+
+def test_bad_selection_is_rejected():
+    with pytest.raises(ValueError, match="unknown family"):
+        BenchConfig(families=("nope",)).resolved()
+    with pytest.raises(ValueError, match="unknown method 'nope'"):
+        BenchConfig(methods=("nope",)).resolved()
