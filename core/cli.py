@@ -140,10 +140,11 @@ def cmd_demo(args) -> int:
 
 def cmd_bench(args) -> int:
     from .evaluation.bench import BenchConfig, run_bench, text_tables
-    from .evaluation.families import FAMILIES
+    from .evaluation.families import DEFAULT_FAMILIES
 
     split = lambda text: tuple(x.strip() for x in text.split(",") if x.strip())  # noqa: E731
-    config = BenchConfig(methods=split(args.methods or ""), families=split(args.families) if args.families else FAMILIES,
+    families = split(args.families) if args.families else DEFAULT_FAMILIES
+    config = BenchConfig(methods=split(args.methods or ""), families=families,
                          size=args.size or (512 if args.quick else 1024), quick=args.quick, jobs=args.jobs,
                          out_dir=args.out, data_dir=args.data or "")
     report = run_bench(config, progress=ProgressBar(not args.quiet))
@@ -194,7 +195,7 @@ def build_parser() -> argparse.ArgumentParser:
     b = sub.add_parser("bench", help="measure methods and baselines on synthetic families and real pairs")
     b.add_argument("--quick", action="store_true", help="a small subset at 512 px (a smoke test, ~1 min)")
     b.add_argument("--methods", help="comma-separated methods (default: all; the SIFT baseline always runs)")
-    b.add_argument("--families", help="comma-separated families (default: all)")
+    b.add_argument("--families", help="comma-separated families (default: all but 'large', the 10980 px scene)")
     b.add_argument("--size", type=int, default=None, help="reference size in px (default 1024; 512 with --quick)")
     b.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel cases (default: all CPUs)")
     b.add_argument("--out", default="bench-output", help="folder for bench.json, bench.md and the cases")

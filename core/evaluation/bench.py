@@ -25,7 +25,7 @@ import numpy as np
 from ..errors import HamtaError
 from ..methods import all_methods
 from ..pipeline import RegisterOptions, register
-from .families import FAMILIES, CaseSpec, available, build_case, default_data_dir, family_specs
+from .families import DEFAULT_FAMILIES, FAMILIES, CaseSpec, available, build_case, default_data_dir, family_specs
 from .metrics import judge
 
 BASELINE = "sift"
@@ -36,7 +36,7 @@ class BenchConfig:
     """What to run. ``size`` is the reference's longest side in pixels for synthetic cases."""
 
     methods: Sequence[str] = ()
-    families: Sequence[str] = FAMILIES
+    families: Sequence[str] = DEFAULT_FAMILIES
     size: int = 1024
     quick: bool = False
     jobs: int = 1
@@ -204,7 +204,8 @@ def summarise(rows: List[dict], methods: Sequence[str]) -> Dict[str, Dict[str, d
             out[fam][m] = {
                 "n_cases": len(rs), "n_success": len(ok), "success_rate": len(ok) / len(rs),
                 "median_rmse_cp": _median([r["rmse_cp"] for r in ok]), "p90_rmse_cp": _p90([r["rmse_cp"] for r in ok]),
-                "median_ncm": _median([r["ncm"] for r in rs]), "median_precision": _median([r["precision"] for r in rs]),
+                "median_ncm": _median([r["ncm"] for r in rs]),
+                "median_precision": _median([r["precision"] for r in rs]),
                 "median_time_s": _median([r["time_s"] for r in rs]),
                 "time_ratio_to_sift": 1.0 if m == BASELINE else _median(ratios),
                 "median_peak_rss_mb": _median([r["peak_rss_mb"] for r in rs]),

@@ -23,7 +23,8 @@ from ..coords import apply_matrix, compose
 from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
 from .synthetic import make_landscape
 
-FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs")
+FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "large")
+DEFAULT_FAMILIES = FAMILIES[:-1]  # 'large' (a Sentinel-2-sized scene, ~1 GB of files) runs on request
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
                 "sar": "pairs/sar-optical_1.jpg"}
 
@@ -205,8 +206,12 @@ def _pairs(quick):
             CaseSpec("pairs", "sar_optical", {"pair": "sar_optical"})]
 
 
+def _large(quick):
+    return [CaseSpec("large", "s2_10980px", {"source": "landscape", "size": 10980, "shift": (37, -21)})]
+
+
 _SPECS = {"rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
-          "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs}
+          "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -220,6 +225,8 @@ def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
     name = f"{spec.family}_{spec.name}"
     if spec.family == "pairs":
         return _pair_case(p["pair"], data_dir)
+    if spec.family == "large":
+        return _large_case(folder, name, p["size"], p["shift"])
     canvas = load_source(p["source"], size, data_dir)
     ch, cw = canvas.shape
     centre = (cw / 2.0, ch / 2.0)
@@ -267,6 +274,38 @@ def _overlap_case(folder, name, canvas, fraction, rng, info):
     g = target_matrix((rh, rw), centre, angle_deg=angle)
     return warped_case(folder, name, canvas, g, (rh, rw), ref_window=(c0, r0, rw, rh), seed=int(rng.integers(1 << 30)),
                        info=dict(info, angle_deg=angle, shift=[float(dx), float(dy)]))
+
+
+def _large_case(folder: str, name: str, size: int, shift) -> Case:
+    """A ``size`` x ``size`` uint16 reference (10 m, UTM 39N) and a georeferenced target covering its
+    central 73 %, whose geotransform is off by ``shift`` target pixels: the memory-bound case."""
+    import rasterio
+    from rasterio.windows import Window
+
+    os.makedirs(folder, exist_ok=True)
+    reference, target = os.path.join(folder, f"{name}_reference.tif"), os.path.join(folder, f"{name}_target.tif")
+    base = make_landscape((size // 4, size // 4), seed=3).astype(np.float32)
+    grey = 0.299 * base[0] + 0.587 * base[1] + 0.114 * base[2]
+    tr = Affine(10.0, 0, 500000.0, 0, -10.0, 4000000.0)
+    prof = dict(driver="GTiff", width=size, height=size, count=1, dtype="uint16", crs="EPSG:32639", transform=tr,
+                tiled=True, blockxsize=512, blockysize=512, compress="deflate")
+    off, tsize = size // 8, size - size // 4
+    rng = np.random.default_rng(5)
+    tgt_prof = dict(prof, width=tsize, height=tsize,
+                    transform=compose(tr, Affine.translation(off + shift[0], off + shift[1])))
+    with rasterio.open(reference, "w", **prof) as ref, rasterio.open(target, "w", **tgt_prof) as tgt:
+        full = cv2.resize(grey, (size, size), interpolation=cv2.INTER_CUBIC)
+        for r0 in range(0, size, 1024):
+            rows = min(1024, size - r0)
+            strip = np.clip(full[r0:r0 + rows] * 40 + rng.normal(0, 80, (rows, size)), 1, 65535).astype("uint16")
+            ref.write(strip, 1, window=Window(0, r0, size, rows))
+            lo, hi = max(r0, off), min(r0 + rows, off + tsize)
+            if lo < hi:
+                tgt.write(strip[lo - r0:hi - r0, off:off + tsize], 1, window=Window(0, lo - off, tsize, hi - lo))
+    truth = lambda p: np.asarray(p, float) + off  # noqa: E731  (pixels are a window of the reference)
+    gx, gy = np.meshgrid(np.linspace(50, tsize - 50, 25), np.linspace(50, tsize - 50, 25))
+    return Case(name, target, reference, truth, np.column_stack([gx.ravel(), gy.ravel()]),
+                info={"family": "large", "size": size, "georeferencing_error_px": list(shift)})
 
 
 def _pair_case(pair_id: str, data_dir: str) -> Case:

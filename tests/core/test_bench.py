@@ -5,7 +5,7 @@ import pytest
 
 from hamta.core.cli import main
 from hamta.core.evaluation.bench import BenchConfig, summarise
-from hamta.core.evaluation.families import FAMILIES, build_case, family_specs
+from hamta.core.evaluation.families import DEFAULT_FAMILIES, build_case, family_specs
 
 
 def test_quick_bench_runs_every_family_and_the_baselines_succeed_on_easy_cases(tmp_path, shared, capsys):
@@ -15,7 +15,7 @@ def test_quick_bench_runs_every_family_and_the_baselines_succeed_on_easy_cases(t
     printed = capsys.readouterr().out
     report = json.loads((out / "bench.json").read_text())
     summary = report["summary"]
-    assert set(summary) == set(FAMILIES)
+    assert set(summary) == set(DEFAULT_FAMILIES)
     assert {"sift", "orb", "phasecorr"} <= set(summary["rotation"])
     for family in ("rotation", "scale", "affine", "overlap", "georeferenced"):
         s = summary[family]["sift"]
