@@ -260,3 +260,19 @@ class RegisterSiftAlgorithm(RegisterAlgorithm):
         "Georeferencer .points file, a VRT carrying the GCPs and a JSON report.<br><br>Reference: D. G. Lowe "
         "(2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, "
         "doi:10.1023/B:VISI.0000029664.99615.94")
+
+
+class RegisterRilbpAlgorithm(RegisterAlgorithm):
+    METHOD = "rilbp"
+    ALG_NAME = "registerrilbp"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("RegisterAlgorithm", "Register satellite image (RILBP, rotation-invariant)")
+    HELP = QT_TRANSLATE_NOOP(
+        "RegisterAlgorithm",
+        "Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon "
+        "keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, "
+        "centre-symmetric LBP in each pixel's radial frame; no orientation step), mutual ratio-test matching, "
+        "seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel "
+        "keypoints and smoothed, radius-2 codes; the CLI method 'rilbp-faithful' is the paper as written."
+        "<br><br>Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern "
+        "descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; "
+        "M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.")

@@ -18,6 +18,7 @@ import resource
 import threading
 import time
 from dataclasses import asdict, dataclass
+from types import SimpleNamespace
 from typing import Callable, Dict, List, Optional, Sequence
 
 import numpy as np
@@ -137,6 +138,7 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
         if progress:
             progress(done / max(len(specs), 1), f"{done}/{len(specs)} cases")
     rows.sort(key=lambda r: (FAMILIES.index(r["family"]), r["case"], list(config.methods).index(r["method"])))
+    reproductions = run_reproductions(config, progress)
     report = {
         "meta": {"date": datetime.datetime.now().isoformat(timespec="seconds"), "duration_s": round(
             time.perf_counter() - t0, 1), "config": {k: list(v) if isinstance(v, tuple) else v
@@ -144,6 +146,7 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
                  "machine": {"cpus": os.cpu_count(), "platform": platform.platform()}, "versions": _versions(),
                  "notes": notes},
         "summary": summarise(rows, config.methods),
+        "reproductions": reproductions,
         "cases": rows,
     }
     with open(os.path.join(config.out_dir, "bench.json"), "w") as f:
@@ -151,6 +154,48 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
     with open(os.path.join(config.out_dir, "bench.md"), "w") as f:
         f.write(markdown(report))
     return report
+
+
+def run_reproductions(config: BenchConfig, progress=None) -> list:
+    """Each paper's own evaluation whose method is benchmarked, on its families' cases."""
+    from .reproductions import all_reproductions
+
+    tables = []
+    for rep in all_reproductions():
+        if not set(rep.methods) & set(config.methods):
+            continue
+        specs = [s for f in rep.families if f in config.families and available(f, config.data_dir)
+                 for s in family_specs(f, config.quick)]
+        if not specs:
+            continue
+        rows, cases = [], []
+        for i, (case, case_rows) in enumerate(_map(_reproduce_case, [(rep.name, s, config) for s in specs], config)):
+            cases.append(case)
+            rows.extend(case_rows)
+            if progress:
+                progress((i + 1) / len(specs), f"reproducing {rep.name}: {i + 1}/{len(specs)}")
+        tables.extend(rep.tables(rows, cases))
+    return tables
+
+
+def _reproduce_case(args):
+    from .reproductions import all_reproductions
+
+    name, spec, config = args
+    rep = next(r for r in all_reproductions() if r.name == name)
+    case = build_case(spec, os.path.join(config.out_dir, "cases", spec.family), config.size, config.data_dir)
+    light = SimpleNamespace(name=case.name, target=case.target, reference=case.reference, info=case.info)
+    return light, rep.per_case(case)
+
+
+def _map(fn, items, config):
+    """``fn`` over ``items`` in the order given, in the worker pool when ``config.jobs`` > 1."""
+    if config.jobs <= 1 or len(items) <= 1:
+        yield from map(fn, items)
+        return
+    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
+    with cf.ProcessPoolExecutor(config.jobs, mp_context=multiprocessing.get_context(method)) as pool:
+        yield from pool.map(fn, items)
 
 
 def _json_default(v):
@@ -240,6 +285,17 @@ def text_tables(report: dict) -> str:
             lines.append("  ".join(c.ljust(w) if j == 0 else c.rjust(w) for j, (c, w) in enumerate(zip(r, widths))))
             if i == 0:
                 lines.append("  ".join("-" * w for w in widths))
+    for table in report.get("reproductions", []):
+        rows = [table["columns"]] + [[_fmt_cell(v) for v in r] for r in table["rows"]]
+        widths = [max(len(str(r[i])) for r in rows) for i in range(len(table["columns"]))]
+        lines.append(f"\n{table['title']}")
+        for i, r in enumerate(rows):
+            lines.append("  ".join(str(c).ljust(w) if j == 0 else str(c).rjust(w) for j, (c, w) in
+                                   enumerate(zip(r, widths))))
+            if i == 0:
+                lines.append("  ".join("-" * w for w in widths))
+        if table.get("note"):
+            lines.append(f"  ({table['note']})")
     meta = report["meta"]
     lines.append(f"\n{sum(len(v) for v in report['summary'].values())} method/family cells, "
                  f"{len(report['cases'])} registrations in {meta['duration_s']} s")
@@ -264,4 +320,18 @@ def markdown(report: dict) -> str:
         out += ["", f"## {fam} ({n} case{'s' if n != 1 else ''})", "",
                 "| " + " | ".join(h for _, h in COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
         out += ["| " + " | ".join(_cells(m, s)) + " |" for m, s in per_method.items()]
+    for table in report.get("reproductions", []):
+        out += ["", f"## {table['title']}", "", "| " + " | ".join(table["columns"]) + " |",
+                "|" + "---|" * len(table["columns"])]
+        out += ["| " + " | ".join(_fmt_cell(v) for v in r) + " |" for r in table["rows"]]
+        if table.get("note"):
+            out += ["", table["note"]]
     return "\n".join(out) + "\n"
+
+
+def _fmt_cell(v) -> str:
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return "–"
+    if isinstance(v, float):
+        return f"{v:.3f}" if abs(v) < 100 else f"{v:.0f}"
+    return str(v)

@@ -77,3 +77,32 @@ def sift_features(image: np.ndarray, mask: np.ndarray, detector: SiftDetector = 
     if desc is None or len(kps) == 0:
         return Features(Keypoints.empty(), np.zeros((0, 128), np.float32), "l2")
     return Features(keypoints_from_opencv(kps, OPENCV_SIFT_BIAS_PX), desc, "l2")
+
+
+def sift_descriptors(image: np.ndarray, xy: np.ndarray, support_radius: np.ndarray,
+                     angle_rad: np.ndarray) -> np.ndarray:
+    """OpenCV SIFT descriptors at given keypoints (no detection, no orientation assignment).
+
+    Parameters
+    ----------
+    image : (H, W) uint8.
+    xy : (K, 2) corner-convention positions.
+    support_radius : (K,) half-width of the 4 x 4 descriptor grid in pixels. OpenCV's cells are
+        3 x (size / 2) wide, so the grid's half-width is 3 x size and size = radius / 3.
+    angle_rad : (K,) orientation, counter-clockwise as displayed (OpenCV's angle is clockwise).
+
+    Returns
+    -------
+    (K, 128) float32, in the order of ``xy`` (keypoints OpenCV drops get a zero row).
+    """
+    k = len(xy)
+    if k == 0:
+        return np.zeros((0, 128), np.float32)
+    cv = xy - 0.5
+    kps = [cv2.KeyPoint(float(x), float(y), float(r / 3.0), float(np.degrees(-a) % 360.0), 1.0, 0, i)
+           for i, ((x, y), r, a) in enumerate(zip(cv, support_radius, angle_rad))]
+    kept, desc = SiftDetector().create().compute(image, kps)
+    out = np.zeros((k, 128), np.float32)
+    if desc is not None and len(kept):
+        out[[kp.class_id for kp in kept]] = desc
+    return out

@@ -33,7 +33,8 @@ class Method:
     default_model : str
         Model used when the caller does not choose one.
     kind : str
-        'method' for published methods, 'baseline' for the comparisons they are measured against.
+        'method' for the product version of a published method, 'faithful' for its as-published
+        version, 'baseline' for the comparisons they are measured against.
     """
 
     name: str
@@ -116,4 +117,4 @@ def all_methods() -> Dict[str, Method]:
 
 def _load_builtin() -> None:
     if not _REGISTRY:
-        from . import orb, phasecorr, sift  # noqa: F401  (each registers itself)
+        from . import orb, phasecorr, rilbp, rilbp_baselines, sift  # noqa: F401  (each registers itself)

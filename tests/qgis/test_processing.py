@@ -26,6 +26,18 @@ def test_provider_lists_the_algorithm_with_its_parameters(provider):
     assert "Lowe" in alg.shortHelpString()
 
 
+def test_rilbp_algorithm_runs(provider, demo_pair, tmp_path):
+    import processing
+
+    alg = provider.algorithm("registerrilbp")
+    assert alg.displayName() == "Register satellite image (RILBP, rotation-invariant)"
+    assert "P_PATCH_SMOOTHING" in [p.name() for p in alg.parameterDefinitions()]
+    res = processing.run("hamta:registerrilbp", dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"],
+                                                     OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json")))
+    report = json.loads(open(res["REPORT"]).read())
+    assert report["method"] == "rilbp" and res["N_GCPS"] >= 20
+
+
 def test_parameter_mapping_is_pure():
     options, out = register_settings({"MODEL": 5, "RESAMPLING": 2, "GRID": 1, "REFINE": 2, "TARGET_BAND": 0,
                                       "REFERENCE_BAND": 2, "SEED": 3, "OUTPUT": "/x/o.tif", "GCP_POINTS": ""},

@@ -1,0 +1,1 @@
+"""Local descriptors computed on scale-normalised patches."""
