@@ -143,13 +143,30 @@ def cmd_bench(args) -> int:
     from .evaluation.families import DEFAULT_FAMILIES
 
     split = lambda text: tuple(x.strip() for x in text.split(",") if x.strip())  # noqa: E731
+    from .evaluation.bench import expand_sweep
+    from .methods import all_methods
+
     families = split(args.families) if args.families else DEFAULT_FAMILIES
-    config = BenchConfig(methods=split(args.methods or ""), families=families,
+    methods = split(args.methods or "") if not args.methods or "[" not in args.methods else tuple(
+        m.strip() for m in args.methods.split(";") if m.strip())
+    if args.sweep:
+        methods = tuple(expand_sweep(methods or tuple(all_methods()), args.sweep))
+    config = BenchConfig(methods=methods, families=families,
                          size=args.size or (512 if args.quick else 1024), quick=args.quick, jobs=args.jobs,
-                         out_dir=args.out, data_dir=args.data or "")
+                         out_dir=args.out, data_dir=args.data or "", reproductions=not args.no_reproductions)
     report = run_bench(config, progress=ProgressBar(not args.quiet))
     print(text_tables(report))
     print(f"\nwritten: {os.path.join(os.path.abspath(args.out), 'bench.json')} and bench.md")
+    return 0
+
+
+def cmd_train_pca_sift(args) -> int:
+    from .descriptors.pca_sift import BASIS_PATH, save_basis, train_basis
+
+    mean, components, n = train_basis(args.images)
+    out = args.out or BASIS_PATH
+    save_basis(out, mean, components, n, args.images)
+    print(f"PCA-SIFT basis ({components.shape[0]} components from {n} patches) written to {out}")
     return 0
 
 
@@ -194,14 +211,23 @@ def build_parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("bench", help="measure methods and baselines on synthetic families and real pairs")
     b.add_argument("--quick", action="store_true", help="a small subset at 512 px (a smoke test, ~1 min)")
-    b.add_argument("--methods", help="comma-separated methods (default: all; the SIFT baseline always runs)")
+    b.add_argument("--methods", help="comma-separated methods (default: all; the SIFT baseline always runs); "
+                                     "variants as 'name[key=value,...]', separated by ';'")
+    b.add_argument("--sweep", action="append", metavar="KEY=V1,V2,...",
+                   help="run every method once per value of a parameter or registration option")
     b.add_argument("--families", help="comma-separated families (default: all but 'large', the 10980 px scene)")
     b.add_argument("--size", type=int, default=None, help="reference size in px (default 1024; 512 with --quick)")
     b.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel cases (default: all CPUs)")
     b.add_argument("--out", default="bench-output", help="folder for bench.json, bench.md and the cases")
     b.add_argument("--data", default=None, help="development data folder (default ../shared/data)")
+    b.add_argument("--no-reproductions", action="store_true", help="skip the papers' own evaluations")
     b.add_argument("--quiet", action="store_true")
     b.set_defaults(func=cmd_bench)
+
+    t = sub.add_parser("train-pca-sift", help="learn the PCA-SIFT basis from images (maintainers)")
+    t.add_argument("images", nargs="+", help="rasters to learn from (the shipped basis: the Landsat sample)")
+    t.add_argument("--out", default=None, help="output .npz (default: the basis shipped with the package)")
+    t.set_defaults(func=cmd_train_pca_sift)
 
     dm = sub.add_parser("demo", help="register the bundled sample and report the true error")
     dm.add_argument("--out", default="demo-output")

@@ -286,5 +286,15 @@
         <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="284"/>
+        <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="285"/>
+        <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 </TS>

@@ -153,7 +153,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         name, label = method_parameter_name(f.name), f.metadata.get("help", f.name)
         choices = f.metadata.get("choices")
         if choices:
-            return QgsProcessingParameterEnum(name, self.tr(label), options=list(choices),
+            return QgsProcessingParameterEnum(name, self.tr(label), options=[str(c) for c in choices],
                                               defaultValue=list(choices).index(f.default))
         if isinstance(f.default, bool):
             return QgsProcessingParameterBoolean(name, self.tr(label), f.default)
@@ -276,3 +276,18 @@ class RegisterRilbpAlgorithm(RegisterAlgorithm):
         "<br><br>Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern "
         "descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; "
         "M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.")
+
+
+class RegisterSibrifAlgorithm(RegisterAlgorithm):
+    METHOD = "sibrif"
+    ALG_NAME = "registersibrif"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("RegisterAlgorithm", "Register aerial image onto satellite image (SIBRIF, fast)")
+    HELP = QT_TRANSLATE_NOOP(
+        "RegisterAlgorithm",
+        "Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian "
+        "keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity "
+        "centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, "
+        "strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its "
+        "own scale and add a ratio test; the CLI method 'sibrif-faithful' is the paper as written."
+        "<br><br>Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image "
+        "matching based on selective scale and rotation (SIBRIF).")

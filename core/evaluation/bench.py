@@ -18,12 +18,12 @@ import resource
 import threading
 import time
 from dataclasses import asdict, dataclass
-from types import SimpleNamespace
 from typing import Callable, Dict, List, Optional, Sequence
 
 import numpy as np
 
 from ..errors import HamtaError
+from ..outputs.report import clean
 from ..methods import all_methods
 from ..pipeline import RegisterOptions, register
 from .families import DEFAULT_FAMILIES, FAMILIES, CaseSpec, available, build_case, default_data_dir, family_specs
@@ -43,6 +43,7 @@ class BenchConfig:
     jobs: int = 1
     out_dir: str = "bench-output"
     data_dir: str = ""
+    reproductions: bool = True
 
     def resolved(self) -> "BenchConfig":
         methods = [m for m in (self.methods or all_methods()) if m != BASELINE]
@@ -52,10 +53,47 @@ class BenchConfig:
             raise ValueError(f"unknown famil{'y' if len(unknown) == 1 else 'ies'} {', '.join(unknown)}; "
                              f"choose from {', '.join(FAMILIES)}")
         for m in methods:
-            if m not in all_methods():
-                raise ValueError(f"unknown method {m!r}; available: {', '.join(all_methods())}")
+            parse_variant(m)  # raises on unknown methods, parameters or options
         return BenchConfig(tuple(methods), tuple(self.families), self.size, self.quick, max(1, self.jobs),
-                           os.path.abspath(self.out_dir), self.data_dir or default_data_dir())
+                           os.path.abspath(self.out_dir), self.data_dir or default_data_dir(), self.reproductions)
+
+
+def parse_variant(text: str):
+    """``name`` or ``name[key=value,...]`` -> (method name, method params, RegisterOptions fields).
+
+    Keys are the method's parameters or, failing that, fields of RegisterOptions (e.g.
+    ``ransac_threshold_px``); a variant is benchmarked as its own row.
+    """
+    import dataclasses
+
+    name, _, rest = text.partition("[")
+    if name not in all_methods():
+        raise ValueError(f"unknown method {name!r}; available: {', '.join(all_methods())}")
+    params, options = {}, {}
+    option_fields = {f.name: f for f in dataclasses.fields(RegisterOptions)}
+    method_fields = {f.name for f in dataclasses.fields(all_methods()[name].params_type)}
+    for item in filter(None, rest.rstrip("]").split(",")):
+        key, _, value = item.partition("=")
+        key = key.strip()
+        if key in method_fields:
+            params[key] = value.strip()
+        elif key in option_fields:
+            kind = type(option_fields[key].default)
+            options[key] = kind(value) if kind in (int, float) else value.strip()
+        else:
+            raise ValueError(f"{key!r} is neither a parameter of {name!r} nor a registration option")
+    all_methods()[name].make_params(params)
+    return name, params, options
+
+
+def expand_sweep(methods: Sequence[str], sweeps: Sequence[str]) -> List[str]:
+    """Every non-baseline method crossed with every ``key=v1,v2,...`` sweep value."""
+    variants = [m for m in methods if m != BASELINE]
+    for sweep in sweeps:
+        key, _, values = sweep.partition("=")
+        variants = [f"{m[:-1] + ',' if m.endswith(']') else m + '['}{key}={v}]"
+                    for m in variants for v in values.split(",")]
+    return [BASELINE] + variants
 
 
 class _PeakRss:
@@ -100,12 +138,13 @@ def run_case(spec: CaseSpec, config: BenchConfig) -> List[dict]:
     case = build_case(spec, folder, config.size, config.data_dir)
     rows = []
     for method in config.methods:
-        options = RegisterOptions(model=spec.model)
+        name, params, overrides = parse_variant(method)
+        options = RegisterOptions(**dict({"model": spec.model}, **overrides))
         result, error = None, None
         t0 = time.perf_counter()
         with _PeakRss() as mem:
             try:
-                result = register(case.target, case.reference, method, options=options)
+                result = register(case.target, case.reference, name, params=params, options=options)
             except (HamtaError, ValueError, np.linalg.LinAlgError) as exc:
                 error = exc
         wall = time.perf_counter() - t0
@@ -138,7 +177,7 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
         if progress:
             progress(done / max(len(specs), 1), f"{done}/{len(specs)} cases")
     rows.sort(key=lambda r: (FAMILIES.index(r["family"]), r["case"], list(config.methods).index(r["method"])))
-    reproductions = run_reproductions(config, progress)
+    reproductions = run_reproductions(config, progress) if config.reproductions else []
     report = {
         "meta": {"date": datetime.datetime.now().isoformat(timespec="seconds"), "duration_s": round(
             time.perf_counter() - t0, 1), "config": {k: list(v) if isinstance(v, tuple) else v
@@ -150,42 +189,37 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
         "cases": rows,
     }
     with open(os.path.join(config.out_dir, "bench.json"), "w") as f:
-        json.dump(report, f, indent=1, allow_nan=False, default=_json_default)
+        json.dump(clean(report), f, indent=1, allow_nan=False)
     with open(os.path.join(config.out_dir, "bench.md"), "w") as f:
         f.write(markdown(report))
     return report
 
 
 def run_reproductions(config: BenchConfig, progress=None) -> list:
-    """Each paper's own evaluation whose method is benchmarked, on its families' cases."""
+    """Each paper's own evaluation whose method is benchmarked and whose families are selected."""
     from .reproductions import all_reproductions
 
     tables = []
+    names = {parse_variant(m)[0] for m in config.methods}
     for rep in all_reproductions():
-        if not set(rep.methods) & set(config.methods):
+        if not set(rep.methods) & names or not set(rep.families) & set(config.families):
             continue
-        specs = [s for f in rep.families if f in config.families and available(f, config.data_dir)
-                 for s in family_specs(f, config.quick)]
-        if not specs:
-            continue
-        rows, cases = [], []
-        for i, (case, case_rows) in enumerate(_map(_reproduce_case, [(rep.name, s, config) for s in specs], config)):
-            cases.append(case)
-            rows.extend(case_rows)
+        units = rep.units(config)
+        rows = []
+        for i, unit_rows in enumerate(_map(_run_unit, [(rep.name, u, config) for u in units], config)):
+            rows.extend(unit_rows)
             if progress:
-                progress((i + 1) / len(specs), f"reproducing {rep.name}: {i + 1}/{len(specs)}")
-        tables.extend(rep.tables(rows, cases))
+                progress((i + 1) / len(units), f"reproducing {rep.name}: {i + 1}/{len(units)}")
+        if rows:
+            tables.extend(rep.tables(rows))
     return tables
 
 
-def _reproduce_case(args):
+def _run_unit(args):
     from .reproductions import all_reproductions
 
-    name, spec, config = args
-    rep = next(r for r in all_reproductions() if r.name == name)
-    case = build_case(spec, os.path.join(config.out_dir, "cases", spec.family), config.size, config.data_dir)
-    light = SimpleNamespace(name=case.name, target=case.target, reference=case.reference, info=case.info)
-    return light, rep.per_case(case)
+    name, unit, config = args
+    return next(r for r in all_reproductions() if r.name == name).run_unit(unit, config)
 
 
 def _map(fn, items, config):
@@ -196,12 +230,6 @@ def _map(fn, items, config):
     method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
     with cf.ProcessPoolExecutor(config.jobs, mp_context=multiprocessing.get_context(method)) as pool:
         yield from pool.map(fn, items)
-
-
-def _json_default(v):
-    if isinstance(v, (np.floating, np.integer)):
-        return v.item()
-    raise TypeError(type(v))
 
 
 def _versions() -> dict:

@@ -25,6 +25,7 @@ import cv2
 import numpy as np
 
 from ..types import Keypoints
+from .extrema import scale_space_extrema
 
 # (m, n) of the inner and outer octagons for scales 1..7 (Agrawal et al. 2008; paper's Table 1).
 OCTAGONS = (((3, 0), (5, 2)), ((3, 1), (5, 3)), ((3, 2), (7, 3)), ((5, 2), (9, 4)),
@@ -162,7 +163,7 @@ def censure_keypoints(image: np.ndarray, mask: np.ndarray, detector: CensureDete
     margin = max(octagon_extent(*o) for _, o in OCTAGONS) // 2 + 1
     usable = cv2.erode(mask.astype(np.uint8), np.ones((2 * margin + 1, 2 * margin + 1), np.uint8),
                        borderType=cv2.BORDER_CONSTANT, borderValue=0) > 0
-    s_idx, ys, xs = _extrema_3x3x3(resp, usable, detector.response_threshold)
+    s_idx, ys, xs = scale_space_extrema(resp, detector.response_threshold, end_layers=True, valid=usable)
     order = np.argsort(-np.abs(resp[s_idx, ys, xs]), kind="stable")
     # The line test is run on the strongest candidates only, enough to leave n_features.
     order = order[: 4 * detector.n_features]
@@ -175,21 +176,6 @@ def censure_keypoints(image: np.ndarray, mask: np.ndarray, detector: CensureDete
     size = 2.0 * detector.support_radius(s_idx)
     kp = Keypoints(xy, size, np.full(len(xy), np.nan), resp[s_idx, ys, xs].astype(np.float64))
     return kp, s_idx
-
-
-def _extrema_3x3x3(resp, usable, threshold):
-    """(scale, row, col) of strict-or-equal maxima and minima over 3x3x3 neighbourhoods."""
-    kernel = np.ones((3, 3), np.uint8)
-    big = np.stack([cv2.dilate(r, kernel, borderType=cv2.BORDER_REPLICATE) for r in resp])
-    small = np.stack([cv2.erode(r, kernel, borderType=cv2.BORDER_REPLICATE) for r in resp])
-    big3 = big.copy()
-    big3[:-1] = np.maximum(big3[:-1], big[1:])
-    big3[1:] = np.maximum(big3[1:], big[:-1])
-    small3 = small.copy()
-    small3[:-1] = np.minimum(small3[:-1], small[1:])
-    small3[1:] = np.minimum(small3[1:], small[:-1])
-    extremum = ((resp >= big3) | (resp <= small3)) & (np.abs(resp) > threshold) & usable[None]
-    return np.nonzero(extremum)
 
 
 def _not_lines(resp, s_idx, ys, xs, ratio):

@@ -41,18 +41,30 @@ def sample_patches(image: np.ndarray, xy: np.ndarray, support_radius: np.ndarray
     cos = np.ones(k) if angle_rad is None else np.cos(angle_rad)
     sin = np.zeros(k) if angle_rad is None else np.sin(angle_rad)
     img = image.astype(np.float32)
-    # Group keypoints by step so that each group is sampled from one suitably smoothed image.
-    steps = np.round(step, 3)
-    for s in np.unique(steps):
-        sel = np.flatnonzero(steps == s)
-        sigma = math.sqrt(0.25 * max(s * s - 1.0, 0.0) + (smoothing * s) ** 2)
-        src = cv2.GaussianBlur(img, (0, 0), sigma) if sigma > 0.2 else img
+    # Each keypoint is sampled with its exact step from an image smoothed for its scale; smoothing
+    # levels are shared between keypoints whose sigmas differ by less than 1/16 octave.
+    sigma = np.sqrt(0.25 * np.maximum(step * step - 1.0, 0.0) + (smoothing * step) ** 2)
+    level = np.where(sigma > 0.2, np.round(np.log2(np.maximum(sigma, 1e-6)) * 16), -10 ** 6).astype(np.int64)
+    pyramid = {0: img}
+    for lv in np.unique(level):
+        sel = np.flatnonzero(level == lv)
+        target_sigma = 2.0 ** (lv / 16.0) if lv > -10 ** 6 else 0.0
+        # Large blurs run on a 2^k-times smaller copy (area-averaged), with the remaining blur there.
+        k = int(max(0, np.floor(np.log2(max(target_sigma, 1e-6) / 2.0)))) if target_sigma > 4 else 0
+        if k not in pyramid:
+            h, w = img.shape
+            pyramid[k] = cv2.resize(img, (max(1, w >> k), max(1, h >> k)), interpolation=cv2.INTER_AREA)
+        base = pyramid[k]
+        f = np.array([base.shape[1] / img.shape[1], base.shape[0] / img.shape[0]])
+        residual = np.sqrt(max(target_sigma ** 2 - (0.5 * (2 ** k) if k else 0.0) ** 2, 0.0)) / (2 ** k)
+        src = cv2.GaussianBlur(base, (0, 0), residual) if residual > 0.2 else base
+        s = step[sel, None, None]
         u = gu[None] * s
         v = gv[None] * s
         # patch x axis = (cos, -sin) in image coordinates (y down); patch y axis = (sin, cos)
         c, n = cos[sel, None, None], sin[sel, None, None]
-        mx = xy[sel, 0, None, None] - 0.5 + c * u + n * v
-        my = xy[sel, 1, None, None] - 0.5 - n * u + c * v
+        mx = (xy[sel, 0, None, None] + c * u + n * v) * f[0] - 0.5
+        my = (xy[sel, 1, None, None] - n * u + c * v) * f[1] - 0.5
         mx = mx.reshape(-1, size).astype(np.float32)
         my = my.reshape(-1, size).astype(np.float32)
         rows = (30000 // size) * size  # cv2.remap maps must stay under 32767 rows

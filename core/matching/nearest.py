@@ -55,13 +55,26 @@ def match_features(a: Features, b: Features, *, ratio: float = 0.8, cross_check:
 
 
 def _two_nearest(query: np.ndarray, train: np.ndarray, metric: str):
-    norm = cv2.NORM_HAMMING if metric == "hamming" else cv2.NORM_L2
-    if metric == "l2":
-        query, train = query.astype(np.float32, copy=False), train.astype(np.float32, copy=False)
-    knn = cv2.BFMatcher(norm).knnMatch(query, train, k=2)
-    pairs = [m for m in knn if len(m) == 2]
-    qi = np.array([m[0].queryIdx for m in pairs], int)
-    ti = np.array([m[0].trainIdx for m in pairs], int)
-    d1 = np.array([m[0].distance for m in pairs], np.float64)
-    d2 = np.array([m[1].distance for m in pairs], np.float64)
-    return qi, ti, d1, d2
+    """Brute-force two nearest neighbours: (query index, nearest index, d1, d2)."""
+    dist, idx = _knn(query, train, metric, 2)
+    return np.arange(len(query)), idx[:, 0].astype(int), dist[:, 0].astype(np.float64), dist[:, 1].astype(np.float64)
+
+
+def _knn(query: np.ndarray, train: np.ndarray, metric: str, k: int):
+    """(distances, indexes) of the k nearest train rows of every query row (OpenCV brute force)."""
+    if metric == "hamming":
+        return cv2.batchDistance(query, train, cv2.CV_32S, normType=cv2.NORM_HAMMING, K=k)
+    q, t = query.astype(np.float32, copy=False), train.astype(np.float32, copy=False)
+    return cv2.batchDistance(q, t, cv2.CV_32F, normType=cv2.NORM_L2, K=k)
+
+
+def self_similar(features: Features, threshold: float) -> np.ndarray:
+    """Mask of keypoints whose nearest *other* descriptor in the same image is closer than
+    ``threshold`` (Hamming bits or L2): ambiguous repeated structure (spec 001, step 4)."""
+    n = len(features)
+    if n < 2 or threshold <= 0:
+        return np.zeros(n, bool)
+    dist, idx = _knn(features.descriptors, features.descriptors, features.metric, 2)
+    self_first = idx[:, 0] == np.arange(n)
+    other = np.where(self_first, dist[:, 1], dist[:, 0])  # an exact duplicate may come before the point itself
+    return other < threshold

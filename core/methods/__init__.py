@@ -116,5 +116,5 @@ def all_methods() -> Dict[str, Method]:
 
 
 def _load_builtin() -> None:
-    if not _REGISTRY:
-        from . import orb, phasecorr, rilbp, rilbp_baselines, sift  # noqa: F401  (each registers itself)
+    """Import the built-in method modules once (each registers itself on import)."""
+    from . import orb, pca_sift, phasecorr, rilbp, rilbp_baselines, sibrif, sift  # noqa: F401

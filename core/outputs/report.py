@@ -5,12 +5,12 @@ import json
 import math
 
 
-def _clean(value):
+def clean(value):
     """JSON-safe copy: NaN/inf become null, numpy scalars become Python numbers."""
     if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
+        return {str(k): clean(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_clean(v) for v in value]
+        return [clean(v) for v in value]
     if hasattr(value, "item") and not isinstance(value, (str, bytes)):
         value = value.item()
     if isinstance(value, float) and not math.isfinite(value):
@@ -20,7 +20,7 @@ def _clean(value):
 
 def write_report(path: str, report: dict) -> None:
     with open(path, "w", encoding="utf-8") as f:
-        json.dump(_clean(report), f, indent=1, allow_nan=False)
+        json.dump(clean(report), f, indent=1, allow_nan=False)
         f.write("\n")
 
 

@@ -38,6 +38,14 @@ def test_rilbp_algorithm_runs(provider, demo_pair, tmp_path):
     assert report["method"] == "rilbp" and res["N_GCPS"] >= 20
 
 
+def test_every_method_algorithm_is_listed(provider):
+    ids = {a.name() for a in provider.algorithms()}
+    assert {"registersift", "registerrilbp", "registersibrif"} <= ids
+    sibrif = provider.algorithm("registersibrif")
+    enum = next(p for p in sibrif.parameterDefinitions() if p.name() == "P_MAGNITUDE")
+    assert enum.options() == ["l1", "l2"]
+
+
 def test_parameter_mapping_is_pure():
     options, out = register_settings({"MODEL": 5, "RESAMPLING": 2, "GRID": 1, "REFINE": 2, "TARGET_BAND": 0,
                                       "REFERENCE_BAND": 2, "SEED": 3, "OUTPUT": "/x/o.tif", "GCP_POINTS": ""},

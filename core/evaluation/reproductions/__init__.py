@@ -1,9 +1,9 @@
 """Reproductions of each paper's own evaluation, run by ``hamta bench`` next to the family tables.
 
-A reproduction evaluates each case (``per_case(case) -> list of row dicts``, run in the bench's
-worker pool) and turns all rows into tables (``tables(rows, cases) -> list of dicts``
-``{"title", "columns", "rows", "note"}``) that the bench prints and stores. It runs when one of its
-``methods`` is benchmarked and its ``families`` are selected.
+A reproduction splits its work into units (``units(config) -> list``), evaluates each unit in
+the bench's worker pool (``run_unit(unit, config) -> list of row dicts``) and turns all rows into
+tables (``tables(rows) -> list of {"title", "columns", "rows", "note"}``) that the bench prints and
+stores. It runs when one of its ``methods`` is benchmarked and one of its ``families`` is selected.
 """
 from __future__ import annotations
 
@@ -16,11 +16,13 @@ class Reproduction:
     name: str
     methods: Tuple[str, ...]
     families: Tuple[str, ...]
-    per_case: Callable
+    units: Callable
+    run_unit: Callable
     tables: Callable
 
 
 def all_reproductions():
     from .rilbp import REPRODUCTION as rilbp
+    from .sibrif import REPRODUCTION as sibrif
 
-    return [rilbp]
+    return [rilbp, sibrif]

@@ -12,6 +12,7 @@ against distances to unrelated regions.
 """
 from __future__ import annotations
 
+import os
 import time
 
 import cv2
@@ -72,6 +73,22 @@ def ground_truth_pairs(truth, tgt_xy, ref_xy) -> int:
     return int(((d_t <= TOLERANCE_PX) & mutual).sum())
 
 
+def units(config) -> list:
+    from ..families import available, family_specs
+
+    return [spec for f in ("rotation", "scale", "pairs") if f in config.families and available(f, config.data_dir)
+            for spec in family_specs(f, config.quick)]
+
+
+def run_unit(spec, config) -> list:
+    import os
+
+    from ..families import build_case
+
+    case = build_case(spec, os.path.join(config.out_dir, "cases", spec.family), config.size, config.data_dir)
+    return [dict(row, family=spec.family, reference=case.reference) for row in evaluate_case(case)]
+
+
 def evaluate_case(case) -> list:
     """Rows (descriptor, recall, precision, N, RMSE, descriptor time) for one case."""
     detector = CensureDetector(subpixel=False)
@@ -116,16 +133,15 @@ def rotation_invariance(source_path, angles=(30, 45, 90, 137), n_regions=300) ->
     return rows
 
 
-def tables(per_case, cases) -> list:
+def tables(per_case) -> list:
     tables = []
-    for family in dict.fromkeys(c.info.get("family", "pairs") for c in cases):
-        names = {c.name for c in cases if c.info.get("family", "pairs") == family}
-        rows = [r for r in per_case if r["case"] in names]
-        tables.append(_summary_table(family, rows))
+    for family in dict.fromkeys(r["family"] for r in per_case):
+        tables.append(_summary_table(family, [r for r in per_case if r["family"] == family]))
     tables.append(_gain_table(per_case))
-    landsat = next((c.reference for c in cases if "landsat" in c.name), cases[0].reference) if cases else None
-    if landsat:
-        tables.append(_invariance_table(rotation_invariance(landsat)))
+    references = [r["reference"] for r in per_case]
+    if references:
+        source = next((p for p in references if "landsat" in os.path.basename(p)), references[0])
+        tables.append(_invariance_table(rotation_invariance(source)))
     return tables
 
 
@@ -170,5 +186,5 @@ def _invariance_table(rows):
                     "'CS-LBP upright' omits it, showing why the baseline needs one."}
 
 
-REPRODUCTION = Reproduction("rilbp", ("rilbp", "rilbp-faithful"), ("rotation", "scale", "pairs"), evaluate_case,
+REPRODUCTION = Reproduction("rilbp", ("rilbp", "rilbp-faithful"), ("rotation", "scale", "pairs"), units, run_unit,
                             tables)

@@ -1,0 +1,58 @@
+"""PCA-SIFT: SIFT keypoints with PCA-projected gradient patches (a spec 001 baseline).
+
+Ke, Y., & Sukthankar, R. (2004). PCA-SIFT: a more distinctive representation for local image
+descriptors. CVPR 2004. :DOI:`10.1109/CVPR.2004.1315206`
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..descriptors.pca_sift import pca_sift_descriptors
+from ..features.sift import OPENCV_SIFT_BIAS_PX, SiftDetector, keypoints_from_opencv
+from ..matching.nearest import CROSS_CHECKS, match_features
+from ..preprocess.normalize import detection_mask, stretch_to_uint8
+from ..progress import Monitor
+from ..types import Features, Keypoints, Matches
+from . import Method, param, register_method, validate
+
+
+@dataclass(frozen=True)
+class PcaSiftParams:
+    n_features: int = param(8000, "Strongest SIFT keypoints kept per image (0 = all).", minimum=0)
+    ratio: float = param(0.8, "Nearest/second-nearest distance ratio (as the SIFT baseline).", minimum=0.0,
+                         maximum=1.0)
+    cross_check: str = param("mutual", "Cross-check of matches: none, mutual or dual-ratio.", choices=CROSS_CHECKS)
+
+    def __post_init__(self):
+        validate(self)
+
+
+def pca_sift_features(img, params: PcaSiftParams) -> Features:
+    gray = stretch_to_uint8(img.data, img.valid)
+    kps = SiftDetector(n_features=params.n_features).create().detect(gray, detection_mask(img.valid))
+    kp = keypoints_from_opencv(kps, OPENCV_SIFT_BIAS_PX)
+    if len(kp) == 0:
+        return Features(Keypoints.empty(), np.zeros((0, 36), np.float32), "l2")
+    angle = -np.radians(kp.angle)  # OpenCV's angle is clockwise in degrees
+    return Features(kp, pca_sift_descriptors(gray, kp.xy, kp.size, angle), "l2")
+
+
+def match(target, reference, params: PcaSiftParams, monitor: Monitor) -> Matches:
+    ft = pca_sift_features(target, params)
+    monitor.report(0.45, "SIFT keypoints, PCA-SIFT")
+    fr = pca_sift_features(reference, params)
+    monitor.report(0.9, "SIFT keypoints, PCA-SIFT")
+    it, ir, score = match_features(ft, fr, ratio=params.ratio, cross_check=params.cross_check)
+    monitor.report(1.0, "matching")
+    return Matches(ft.keypoints.xy[it], fr.keypoints.xy[ir], score, len(ft), len(fr))
+
+
+METHOD = register_method(Method(
+    name="pca-sift",
+    title="PCA-SIFT (spec 001 baseline)",
+    summary="SIFT keypoints described by 41x41 gradient patches projected on a 36-D principal subspace learnt "
+            "from real imagery (shipped with the package).",
+    citation="Ke & Sukthankar 2004, CVPR, doi:10.1109/CVPR.2004.1315206",
+    params_type=PcaSiftParams, match=match, kind="baseline"))
