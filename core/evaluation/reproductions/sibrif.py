@@ -132,7 +132,8 @@ def tables(rows) -> list:
             row = [v] if part == "rotation" else [v, AERIAL_SCALE / v]
             for m in SWEEP_METHODS:
                 r = next((x for x in rs if x[key] == v and x["method"] == m), None)
-                row += [r["pct_correct"], r["pct_correct_inliers"], "yes" if r["success"] else "no"] if r else [None] * 3
+                row += ([r["pct_correct"], r["pct_correct_inliers"], "yes" if r["success"] else "no"] if r
+                        else [None] * 3)
             body.append(row)
         cols = [label] + ([] if part == "rotation" else ["target/ref scale"])
         for m in SWEEP_METHODS:
