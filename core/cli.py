@@ -191,7 +191,8 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--grid", default="auto", choices=GRID_CHOICES, help="output pixel grid")
     r.add_argument("--vrt", action="store_true", help="also write gcps.vrt (target + GCPs, no resampling)")
     r.add_argument("--max-working-pixels", type=int, default=d.max_working_pixels)
-    r.add_argument("--ransac-threshold", type=float, default=d.ransac_threshold_px, help="working pixels")
+    r.add_argument("--ransac-threshold", type=float, default=None,
+                   help="working pixels (default: the method's, 3 for most)")
     r.add_argument("--seed", type=int, default=d.seed)
     r.add_argument("--refine", default=d.refine, choices=REFINE_CHOICES)
     r.add_argument("--max-gcps", type=int, default=d.max_gcps)

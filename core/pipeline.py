@@ -41,8 +41,8 @@ class RegisterOptions:
         Transform model (see ``hamta.core.estimation.MODEL_CHOICES``); None = the method's default.
     max_working_pixels : int
         Pixel budget of each working image; bounds memory and matching time.
-    ransac_threshold_px : float
-        Inlier tolerance in working reference pixels.
+    ransac_threshold_px : float, optional
+        Inlier tolerance in working reference pixels; None = the method's default.
     seed : int
         Seed of every random choice (RANSAC), for reproducible runs.
     refine : {'auto', 'on', 'off'}
@@ -59,7 +59,7 @@ class RegisterOptions:
 
     model: Optional[str] = None
     max_working_pixels: int = 4_000_000
-    ransac_threshold_px: float = 3.0
+    ransac_threshold_px: Optional[float] = None
     seed: int = 0
     refine: str = "auto"
     max_gcps: int = 500
@@ -77,7 +77,7 @@ class RegisterOptions:
             raise ValueError(f"target_georef must be one of {TARGET_GEOREF_CHOICES}, got {self.target_georef!r}")
         if self.max_working_pixels < 4096:
             raise ValueError("max_working_pixels must be at least 4096")
-        if self.ransac_threshold_px <= 0:
+        if self.ransac_threshold_px is not None and self.ransac_threshold_px <= 0:
             raise ValueError("ransac_threshold_px must be positive")
 
 
@@ -136,7 +136,8 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
 
     need = max(options.min_inliers, MIN_POINTS[model_kind] + 2)
     linear_kind = model_kind if model_kind in ("similarity", "affine") else "projective"
-    threshold = options.ransac_threshold_px * ref.source_px_per_working_px
+    tolerance = options.ransac_threshold_px or spec.ransac_threshold_px
+    threshold = tolerance * ref.source_px_per_working_px
     try:
         linear, inliers = _robust_linear(tgt_px, ref_px, linear_kind, threshold, options.seed, need, spec.name,
                                          tgt_info.path)
@@ -156,7 +157,7 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
         r_tgt, r_ref, r_score = refine_points(linear, ref_px[inliers][pick], tgt_info, tgt_bands, ref_info,
                                               ref_bands, rp, monitor.span(0.75, 0.9))
         if len(r_tgt) >= need:
-            fit_threshold = max(1.0, options.ransac_threshold_px)
+            fit_threshold = max(1.0, tolerance)
             linear, r_in = _robust_linear(r_tgt, r_ref, linear_kind, fit_threshold, options.seed, need, spec.name,
                                           tgt_info.path)
             tgt_px, ref_px, score = r_tgt, r_ref, r_score
@@ -248,7 +249,8 @@ def _assemble(spec, params, options, kind, model, tgt_info, ref_info, plan, tgt_
         "refined": bool(refined),
         "peak_rss_mb": _peak_rss_mb(),
     }
-    options_dict = dict(dataclasses.asdict(options), model=kind)
+    options_dict = dict(dataclasses.asdict(options), model=kind,
+                        ransac_threshold_px=options.ransac_threshold_px or spec.ransac_threshold_px)
     return RegistrationResult(
         method=spec.name, params=params_dict(params), options=options_dict, model=model, target=tgt_info,
         reference=ref_info, plan=plan, gcps=gcps, stats=stats, timings=clock.as_dict(), notes=notes,

@@ -37,7 +37,7 @@ def register_settings(values: Mapping[str, Any], default_model: str):
     options = RegisterOptions(
         model=model,
         max_working_pixels=int(values.get("MAX_WORKING_PIXELS") or d.max_working_pixels),
-        ransac_threshold_px=float(values.get("RANSAC_THRESHOLD") or d.ransac_threshold_px),
+        ransac_threshold_px=float(values["RANSAC_THRESHOLD"]) if values.get("RANSAC_THRESHOLD") else None,
         seed=int(values.get("SEED") or 0),
         refine=REFINE_CHOICES[values.get("REFINE") or 0],
         max_gcps=int(values.get("MAX_GCPS") or d.max_gcps),

@@ -125,7 +125,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             d.max_working_pixels, minValue=4096)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.RANSAC_THRESHOLD, self.tr("RANSAC tolerance (working pixels)"), QgsProcessingParameterNumber.Double,
-            d.ransac_threshold_px, minValue=0.1)))
+            method.ransac_threshold_px, minValue=0.1)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.MAX_GCPS, self.tr("Maximum number of GCPs"), QgsProcessingParameterNumber.Integer, d.max_gcps,
             minValue=4)))

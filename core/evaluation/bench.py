@@ -70,7 +70,7 @@ def parse_variant(text: str):
     if name not in all_methods():
         raise ValueError(f"unknown method {name!r}; available: {', '.join(all_methods())}")
     params, options = {}, {}
-    option_fields = {f.name: f for f in dataclasses.fields(RegisterOptions)}
+    option_fields = {f.name for f in dataclasses.fields(RegisterOptions)}
     method_fields = {f.name for f in dataclasses.fields(all_methods()[name].params_type)}
     for item in filter(None, rest.rstrip("]").split(",")):
         key, _, value = item.partition("=")
@@ -78,12 +78,20 @@ def parse_variant(text: str):
         if key in method_fields:
             params[key] = value.strip()
         elif key in option_fields:
-            kind = type(option_fields[key].default)
-            options[key] = kind(value) if kind in (int, float) else value.strip()
+            options[key] = _number_or_text(value.strip())
         else:
             raise ValueError(f"{key!r} is neither a parameter of {name!r} nor a registration option")
     all_methods()[name].make_params(params)
     return name, params, options
+
+
+def _number_or_text(text: str):
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
 
 
 def expand_sweep(methods: Sequence[str], sweeps: Sequence[str]) -> List[str]:

@@ -32,6 +32,8 @@ class Method:
         ``match(target, reference, params, monitor) -> Matches``.
     default_model : str
         Model used when the caller does not choose one.
+    ransac_threshold_px : float
+        Default RANSAC tolerance (working reference pixels) when the caller does not choose one.
     kind : str
         'method' for the product version of a published method, 'faithful' for its as-published
         version, 'baseline' for the comparisons they are measured against.
@@ -45,6 +47,7 @@ class Method:
     match: Callable
     default_model: str = "affine"
     kind: str = "method"
+    ransac_threshold_px: float = 3.0
 
     def make_params(self, values: Optional[Mapping[str, Any]] = None):
         """Build the parameter dataclass from ``values`` (strings are converted); unknown keys fail."""

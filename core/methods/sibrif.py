@@ -40,7 +40,7 @@ CITATION = ("Safdari, Moallem & Sattari, Robust and fast aerial and satellite im
 class SibrifParams:
     """Parameters of SIBRIF (product defaults; see SibrifFaithfulParams for the paper's)."""
 
-    edge_threshold: float = param(20.0, "Sobel magnitude threshold T (0..255; gap in the paper, default from a "
+    edge_threshold: float = param(10.0, "Sobel magnitude threshold T (0..255; gap in the paper, default from a "
                                         "sweep).", minimum=0.0, maximum=254.0)
     similarity_threshold: float = param(10.0, "Hamming distance under which a keypoint with a near-duplicate in its "
                                               "own image is removed (gap; from a sweep).", minimum=0.0)
@@ -70,7 +70,7 @@ class SibrifParams:
 class SibrifFaithfulParams(SibrifParams):
     """The paper as written (and, for its gaps, the spec's readings)."""
 
-    edge_threshold: float = param(40.0, "Sobel magnitude threshold T (0..255; gap in the paper, default from a "
+    edge_threshold: float = param(80.0, "Sobel magnitude threshold T (0..255; gap in the paper, default from a "
                                         "sweep).", minimum=0.0, maximum=254.0)
     magnitude: str = param("l1", "Faithful: OpenCV tutorial magnitude 0.5|Gx|+0.5|Gy|.", choices=("l1", "l2"))
     threshold_mode: str = param("to-zero", "Faithful: threshold-to-zero.", choices=("to-zero", "soft"))
@@ -189,11 +189,12 @@ METHOD = register_method(Method(
     summary="SIFT keypoints on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the "
             "intensity centroid, self-similar keypoints removed, mutual Hamming matching. Few, strong "
             "keypoints: fast. Product adds scale-aware description.",
-    citation=CITATION, params_type=SibrifParams, match=match))
+    citation=CITATION, params_type=SibrifParams, match=match,
+    ransac_threshold_px=2.0))  # the paper gives none; sweep (docs/benchmarks.md): 1-5 px within 0.01 px median
 
 FAITHFUL = register_method(Method(
     name="sibrif-faithful",
     title="SIBRIF, as published",
     summary="The paper's pipeline: fixed 31-px rBRIEF patches at full resolution.",
-    citation=CITATION, params_type=SibrifFaithfulParams, match=match, kind="faithful"))
+    citation=CITATION, params_type=SibrifFaithfulParams, match=match, kind="faithful", ransac_threshold_px=2.0))
 
