@@ -19,7 +19,7 @@ import numpy as np
 from .coords import pixel_to_map
 from .errors import InsufficientMatchesError
 from .estimation.framed import CrsFrame, fit_framed
-from .estimation.models import MIN_POINTS, canonical_model, fit_model
+from .estimation.models import MIN_POINTS, LinearModel, canonical_model, fit_model
 from .estimation.ransac import ransac
 from .io.raster import open_raster, resolve_bands
 from .io.working import TARGET_GEOREF_CHOICES, prepare_working_images
@@ -29,6 +29,7 @@ from .refine import RefineParams, refine_points, spread_subset
 from .result import Correspondences, Gcp, RegistrationResult, params_dict
 
 REFINE_CHOICES = ("auto", "on", "off")
+ROBUST_CHOICES = ("ransac", "none")
 
 
 @dataclass(frozen=True)
@@ -49,8 +50,12 @@ class RegisterOptions:
         Full-resolution refinement; 'auto' refines when a working image was decimated.
     max_gcps : int
         Well-spread inliers kept as GCPs; the model is fitted on exactly these.
-    min_inliers : int
-        Fewest agreeing correspondences accepted as a registration (at least the model minimum + 2).
+    min_inliers : int, optional
+        Fewest agreeing correspondences accepted as a registration (at least the model minimum + 2);
+        None = the method's default.
+    robust : {'ransac', 'none'}, optional
+        Outlier rejection before the fit; 'none' fits every correspondence (as some papers do);
+        None = the method's default.
     target_georef : {'auto', 'use', 'ignore'}
         Whether the target's own georeferencing is used as a starting point.
     target_band, reference_band : int, optional
@@ -63,7 +68,8 @@ class RegisterOptions:
     seed: int = 0
     refine: str = "auto"
     max_gcps: int = 500
-    min_inliers: int = 8
+    min_inliers: Optional[int] = None
+    robust: Optional[str] = None
     target_georef: str = "auto"
     target_band: Optional[int] = None
     reference_band: Optional[int] = None
@@ -77,6 +83,8 @@ class RegisterOptions:
             raise ValueError(f"target_georef must be one of {TARGET_GEOREF_CHOICES}, got {self.target_georef!r}")
         if self.max_working_pixels < 4096:
             raise ValueError("max_working_pixels must be at least 4096")
+        if self.robust not in (None,) + ROBUST_CHOICES:
+            raise ValueError(f"robust must be one of {ROBUST_CHOICES}, got {self.robust!r}")
         if self.ransac_threshold_px is not None and self.ransac_threshold_px <= 0:
             raise ValueError("ransac_threshold_px must be positive")
 
@@ -134,13 +142,14 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     ref_px = ref.to_source.forward(matches.reference_xy) if len(matches) else np.zeros((0, 2))
     score = np.asarray(matches.score, float)
 
-    need = max(options.min_inliers, MIN_POINTS[model_kind] + 2)
+    need = max(options.min_inliers or spec.min_inliers, MIN_POINTS[model_kind] + 2)
+    robust = options.robust or spec.robust
     linear_kind = model_kind if model_kind in ("similarity", "affine") else "projective"
     tolerance = options.ransac_threshold_px or spec.ransac_threshold_px
     threshold = tolerance * ref.source_px_per_working_px
     try:
         linear, inliers = _robust_linear(tgt_px, ref_px, linear_kind, threshold, options.seed, need, spec.name,
-                                         tgt_info.path)
+                                         tgt_info.path, robust)
     except InsufficientMatchesError as exc:
         exc.correspondences = Correspondences(tgt_px, ref_px, score, np.zeros(len(tgt_px), bool))
         raise
@@ -159,7 +168,7 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
         if len(r_tgt) >= need:
             fit_threshold = max(1.0, tolerance)
             linear, r_in = _robust_linear(r_tgt, r_ref, linear_kind, fit_threshold, options.seed, need, spec.name,
-                                          tgt_info.path)
+                                          tgt_info.path, robust)
             tgt_px, ref_px, score = r_tgt, r_ref, r_score
             inliers = r_in
             threshold = fit_threshold
@@ -179,12 +188,14 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     return result
 
 
-def _robust_linear(tgt_px, ref_px, kind, threshold, seed, need, method, target_path):
+def _robust_linear(tgt_px, ref_px, kind, threshold, seed, need, method, target_path, robust="ransac"):
     n = len(tgt_px)
     if n < need:
         raise InsufficientMatchesError(
             f"Method '{method}' found only {n} candidate correspondences for '{target_path}' (at least "
             f"{need} are needed). The images may not overlap, or differ too much for this method.", n, need)
+    if robust == "none":
+        return LinearModel.fit(kind, tgt_px, ref_px), np.ones(n, bool)
     try:
         model, inliers = ransac(tgt_px, ref_px, kind, threshold_px=threshold, rng=seed)
     except ValueError:
@@ -213,7 +224,7 @@ def _fit(kind, src, dst, frame):
 
 def _final_fit(kind, tgt_px, ref_px, score, inliers, threshold, max_gcps, frame):
     """Fit ``kind`` on well-spread inliers; widen the inlier set for the non-linear models."""
-    if kind not in ("similarity", "affine", "projective", "tps"):
+    if kind not in ("similarity", "affine", "projective", "tps") and not inliers.all():
         for _ in range(5):
             model = _fit(kind, tgt_px[inliers], ref_px[inliers], frame)
             new = model.residuals(tgt_px, ref_px) < threshold
@@ -250,7 +261,8 @@ def _assemble(spec, params, options, kind, model, tgt_info, ref_info, plan, tgt_
         "peak_rss_mb": _peak_rss_mb(),
     }
     options_dict = dict(dataclasses.asdict(options), model=kind,
-                        ransac_threshold_px=options.ransac_threshold_px or spec.ransac_threshold_px)
+                        ransac_threshold_px=options.ransac_threshold_px or spec.ransac_threshold_px,
+                        min_inliers=options.min_inliers or spec.min_inliers, robust=options.robust or spec.robust)
     return RegistrationResult(
         method=spec.name, params=params_dict(params), options=options_dict, model=model, target=tgt_info,
         reference=ref_info, plan=plan, gcps=gcps, stats=stats, timings=clock.as_dict(), notes=notes,

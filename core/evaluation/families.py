@@ -124,6 +124,13 @@ def speckle(looks):
     return apply
 
 
+def despeckled(canvas: Canvas) -> Canvas:
+    """A 3 x 3 boxcar of intensity: the real SAR image's own speckle mostly averaged out, so the
+    two sides' new speckle is (nearly) independent."""
+    data = np.sqrt(np.stack([cv2.blur(b * b, (3, 3)) for b in canvas.data]))
+    return Canvas(data.astype(np.float32), canvas.valid, canvas.crs, canvas.transform, canvas.dtype)
+
+
 def nonlinear(kind: str, looks=None):
     """Multimodal proxy: a non-linear intensity mapping (some invert contrast), then optional speckle."""
     maps = {
@@ -179,9 +186,12 @@ def _overlap(quick):
 
 
 def _speckle(quick):
-    geoms = ((10, 0.8),) if quick else ((10, 0.8), (30, 1.25))
+    """Speckled pairs, independent speckle on each side; the SAR source (the real SAR image of the
+    SAR-optical development pair) gives SAR texture. Rotations up to 180 degrees and scales 0.6-1.6
+    make the hard cases where a detector's speckle handling matters."""
+    geoms = ((30, 1.25),) if quick else ((10, 0.8), (30, 1.25), (75, 0.6), (120, 1.6), (180, 1.0), (160, 0.7))
     looks = (1,) if quick else (1, 4)
-    sources = ("landsat",) if quick else ("landsat", "sar")
+    sources = ("sar",) if quick else ("landsat", "sar")
     return [CaseSpec("speckle", f"{src}_L{L}_rot{a}_scale{s}", {"source": src, "looks": L, "angle": a, "scale": s})
             for src in sources for L in looks for a, s in geoms]
 
@@ -258,6 +268,8 @@ def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
     info.update({k: v for k, v in kw.items()})
     g = target_matrix(shape, centre, shift=shift, **kw)
     ref_radio = speckle(p["looks"]) if spec.family == "speckle" else None
+    if spec.family == "speckle" and p["source"] == "sar":
+        canvas = despeckled(canvas)
     return warped_case(folder, name, canvas, g, shape, reference_radiometry=ref_radio, target_radiometry=radio,
                        dtype=dtype, seed=spec.seed, info=info)
 

@@ -54,7 +54,7 @@ def gaussian_octaves(image: np.ndarray, params: DogParams = DogParams(), assumed
 
 
 def dog_keypoints(octaves: List[np.ndarray], params: DogParams = DogParams(),
-                  level_sigmas=None) -> Tuple[Keypoints, np.ndarray]:
+                  level_sigmas=None) -> Tuple[Keypoints, np.ndarray, np.ndarray]:
     """Keypoints of the difference of adjacent levels of each octave stack.
 
     Parameters
@@ -68,6 +68,8 @@ def dog_keypoints(octaves: List[np.ndarray], params: DogParams = DogParams(),
     Keypoints
         ``size`` = 2 x sigma in input pixels, ``response`` = |interpolated DoG|, angle NaN.
     octave : (N,) int
+    level : (N,) float, interpolated level within the octave (the DoG between levels s and s + 1
+        is indexed s).
     """
     s = params.layers
     rows = []
@@ -78,19 +80,19 @@ def dog_keypoints(octaves: List[np.ndarray], params: DogParams = DogParams(),
         if len(found):
             sig = level_sigmas if level_sigmas is not None else params.sigma * 2 ** (np.arange(len(stack)) / s)
             layer_sigma = np.interp(found[:, 2], np.arange(len(sig)), sig)
-            f = 2 ** o
-            x = f * (found[:, 0] + 0.5 - 0.5) + 0.5
-            y = f * (found[:, 1] + 0.5 - 0.5) + 0.5
-            rows.append(np.column_stack([x, y, 2 * layer_sigma * f, found[:, 3], np.full(len(found), o)]))
+            f = 2 ** o  # octave pixel centre i sits on input pixel centre f * i
+            x = f * found[:, 0] + 0.5
+            y = f * found[:, 1] + 0.5
+            rows.append(np.column_stack([x, y, 2 * layer_sigma * f, found[:, 3], np.full(len(found), o), found[:, 2]]))
     if not rows:
-        return Keypoints.empty(), np.zeros(0, int)
+        return Keypoints.empty(), np.zeros(0, int), np.zeros(0)
     allk = np.concatenate(rows)
     order = np.argsort(-allk[:, 3], kind="stable")
     if params.max_keypoints > 0:
         order = order[: params.max_keypoints]
     allk = allk[order]
     kp = Keypoints(allk[:, :2], allk[:, 2], np.full(len(allk), np.nan), allk[:, 3])
-    return kp, allk[:, 4].astype(int)
+    return kp, allk[:, 4].astype(int), allk[:, 5]
 
 
 def _refine(dog: np.ndarray, cand, params: DogParams) -> np.ndarray:

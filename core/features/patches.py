@@ -16,7 +16,8 @@ import numpy as np
 
 
 def sample_patches(image: np.ndarray, xy: np.ndarray, support_radius: np.ndarray, radius: int = 20,
-                   margin: int = 2, angle_rad: Optional[np.ndarray] = None, smoothing: float = 0.0) -> np.ndarray:
+                   margin: int = 2, angle_rad: Optional[np.ndarray] = None, smoothing: float = 0.0,
+                   antialias: bool = True) -> np.ndarray:
     """(K, S, S) float32 patches, S = 2 * (radius + margin) + 1.
 
     Parameters
@@ -28,6 +29,9 @@ def sample_patches(image: np.ndarray, xy: np.ndarray, support_radius: np.ndarray
         counter-clockwise as displayed, i.e. from +x towards -y).
     smoothing : float
         Extra Gaussian smoothing, in patch pixels, applied (through the source) before sampling.
+    antialias : bool
+        Smooth the source before downsampling; off when it is already smooth at the patch scale
+        (a scale-space level sampled finer than its sigma).
     """
     k = len(xy)
     half = radius + margin
@@ -43,7 +47,7 @@ def sample_patches(image: np.ndarray, xy: np.ndarray, support_radius: np.ndarray
     img = image.astype(np.float32)
     # Each keypoint is sampled with its exact step from an image smoothed for its scale; smoothing
     # levels are shared between keypoints whose sigmas differ by less than 1/16 octave.
-    sigma = np.sqrt(0.25 * np.maximum(step * step - 1.0, 0.0) + (smoothing * step) ** 2)
+    sigma = np.sqrt((0.25 * np.maximum(step * step - 1.0, 0.0) if antialias else 0.0) + (smoothing * step) ** 2)
     level = np.where(sigma > 0.2, np.round(np.log2(np.maximum(sigma, 1e-6)) * 16), -10 ** 6).astype(np.int64)
     pyramid = {0: img}
     for lv in np.unique(level):

@@ -34,6 +34,10 @@ class Method:
         Model used when the caller does not choose one.
     ransac_threshold_px : float
         Default RANSAC tolerance (working reference pixels) when the caller does not choose one.
+    robust : str
+        Default outlier rejection: 'ransac', or 'none' for methods whose paper fits all matches.
+    min_inliers : int
+        Default fewest agreeing correspondences accepted as a registration.
     kind : str
         'method' for the product version of a published method, 'faithful' for its as-published
         version, 'baseline' for the comparisons they are measured against.
@@ -48,6 +52,8 @@ class Method:
     default_model: str = "affine"
     kind: str = "method"
     ransac_threshold_px: float = 3.0
+    robust: str = "ransac"
+    min_inliers: int = 8
 
     def make_params(self, values: Optional[Mapping[str, Any]] = None):
         """Build the parameter dataclass from ``values`` (strings are converted); unknown keys fail."""
@@ -120,4 +126,4 @@ def all_methods() -> Dict[str, Method]:
 
 def _load_builtin() -> None:
     """Import the built-in method modules once (each registers itself on import)."""
-    from . import orb, pca_sift, phasecorr, rilbp, rilbp_baselines, sibrif, sift  # noqa: F401
+    from . import ndsift_pc, orb, pca_sift, phasecorr, rilbp, rilbp_baselines, sibrif, sift  # noqa: F401

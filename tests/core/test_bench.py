@@ -53,6 +53,7 @@ def test_summary_counts_failures_once_and_ratios_per_case():
     assert s["x"]["success_rate"] == 0.5 and s["x"]["median_rmse_cp"] == 0.1  # the failure is not averaged in
     assert s["x"]["time_ratio_to_sift"] == pytest.approx(0.375)  # median of 1/2 and 1/4
     assert s["sift"]["median_rmse_cp"] == pytest.approx(0.3)
+    assert s["x"]["hardest_third_success"] == 0.0 and s["sift"]["hardest_third_success"] == 1.0  # case b
 
 
 def test_bad_selection_is_rejected():

@@ -4,6 +4,7 @@ A reproduction splits its work into units (``units(config) -> list``), evaluates
 the bench's worker pool (``run_unit(unit, config) -> list of row dicts``) and turns all rows into
 tables (``tables(rows) -> list of {"title", "columns", "rows", "note"}``) that the bench prints and
 stores. It runs when one of its ``methods`` is benchmarked and one of its ``families`` is selected.
+A reproduction with ``units = None`` is computed from the benchmark's own rows of its families.
 """
 from __future__ import annotations
 
@@ -22,7 +23,8 @@ class Reproduction:
 
 
 def all_reproductions():
+    from .ndsift import REPRODUCTION as ndsift
     from .rilbp import REPRODUCTION as rilbp
     from .sibrif import REPRODUCTION as sibrif
 
-    return [rilbp, sibrif]
+    return [rilbp, sibrif, ndsift]
