@@ -211,7 +211,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub.add_parser("methods", help="list the matching methods and their parameters").set_defaults(func=cmd_methods)
 
     b = sub.add_parser("bench", help="measure methods and baselines on synthetic families and real pairs")
-    b.add_argument("--quick", action="store_true", help="a small subset at 512 px (a smoke test, ~1 min)")
+    b.add_argument("--quick", action="store_true",
+                   help="a small subset at 512 px: product methods and generic baselines (a smoke test, ~1 min)")
     b.add_argument("--methods", help="comma-separated methods (default: all; the SIFT baseline always runs); "
                                      "variants as 'name[key=value,...]', separated by ';'")
     b.add_argument("--sweep", action="append", metavar="KEY=V1,V2,...",

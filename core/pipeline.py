@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Optional
 
 import numpy as np
@@ -25,7 +25,7 @@ from .io.raster import open_raster, resolve_bands
 from .io.working import TARGET_GEOREF_CHOICES, prepare_working_images
 from .methods import get_method
 from .progress import Monitor
-from .refine import RefineParams, refine_points, spread_subset
+from .refine import grid_points, refine_points, spread_subset
 from .result import Correspondences, Gcp, RegistrationResult, params_dict
 
 REFINE_CHOICES = ("auto", "on", "off")
@@ -47,7 +47,8 @@ class RegisterOptions:
     seed : int
         Seed of every random choice (RANSAC), for reproducible runs.
     refine : {'auto', 'on', 'off'}
-        Full-resolution refinement; 'auto' refines when a working image was decimated.
+        Full-resolution refinement; 'auto' refines when a working image was decimated or the method
+        always refines (see :class:`hamta.core.methods.Method`).
     max_gcps : int
         Well-spread inliers kept as GCPs; the model is fitted on exactly these.
     min_inliers : int, optional
@@ -159,22 +160,26 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
 
     notes = list(plan.notes)
     decimation = max(tgt.source_px_per_working_px, ref.source_px_per_working_px)
-    refined = options.refine == "on" or (options.refine == "auto" and decimation > 1.25)
+    refined = options.refine == "on" or (options.refine == "auto" and (spec.refine == "always" or decimation > 1.25))
     if refined:
-        rp = RefineParams(search_px=int(math.ceil(2.5 * decimation)) + 4)
-        pick = spread_subset(ref_px[inliers], score[inliers], rp.max_points)
-        r_tgt, r_ref, r_score = refine_points(linear, ref_px[inliers][pick], tgt_info, tgt_bands, ref_info,
-                                              ref_bands, rp, monitor.span(0.75, 0.9))
-        if len(r_tgt) >= need:
-            fit_threshold = max(1.0, tolerance)
-            linear, r_in = _robust_linear(r_tgt, r_ref, linear_kind, fit_threshold, options.seed, need, spec.name,
-                                          tgt_info.path, robust)
+        rp = replace(spec.refinement, search_px=max(spec.refinement.search_px, int(math.ceil(2.5 * decimation)) + 4))
+        for i in range(rp.passes):
+            if rp.points == "grid":
+                points = grid_points(linear, tgt_info, ref_info, rp)
+            else:
+                points = ref_px[inliers][spread_subset(ref_px[inliers], score[inliers], rp.max_points)]
+            span = monitor.span(0.75 + 0.15 * i / rp.passes, 0.75 + 0.15 * (i + 1) / rp.passes)
+            r_tgt, r_ref, r_score = refine_points(linear, points, tgt_info, tgt_bands, ref_info, ref_bands, rp, span)
+            if len(r_tgt) < need:
+                notes.append(f"refinement kept only {len(r_tgt)} points; using the "
+                             + ("working-resolution matches" if i == 0 else "previous pass"))
+                refined = refined and i > 0
+                break
+            threshold = max(1.0, tolerance)
+            linear, inliers = _robust_linear(r_tgt, r_ref, linear_kind, threshold, options.seed, need, spec.name,
+                                             tgt_info.path, robust)
             tgt_px, ref_px, score = r_tgt, r_ref, r_score
-            inliers = r_in
-            threshold = fit_threshold
-        else:
-            notes.append(f"refinement kept only {len(r_tgt)} points; using the working-resolution matches")
-            refined = False
+            rp = replace(rp, search_px=min(rp.search_px, 3))  # later passes start from the refined model
     clock.lap("refine")
     monitor.report(0.9, "fitting")
 

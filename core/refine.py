@@ -35,13 +35,49 @@ class RefineParams:
     min_ncc : float
         Lowest accepted correlation peak; weaker points are dropped, not kept unrefined.
     max_points : int
-        At most this many well-spread points are refined.
+        At most this many points are refined.
+    points : {'matches', 'grid'}
+        Refine well-spread inlier matches, or a regular grid over the overlap (for images where
+        features are few and noisy but area correlation works, such as speckled SAR).
+    passes : int
+        Refinement passes; each later pass starts from the model fitted on the previous one
+        (templates then line up better where the first model was off by a few pixels).
     """
 
     template_px: int = 31
     search_px: int = 6
     min_ncc: float = 0.5
     max_points: int = 300
+    points: str = "matches"
+    passes: int = 1
+
+    def __post_init__(self):
+        if self.points not in ("matches", "grid"):
+            raise ValueError(f"refinement points must be 'matches' or 'grid', got {self.points!r}")
+
+
+def grid_points(model: LinearModel, target: RasterInfo, reference: RasterInfo, params: RefineParams) -> np.ndarray:
+    """About ``params.max_points`` reference px (K, 2) on a regular grid over the part of the
+    reference that ``model`` (target px -> reference px) says the target covers, a template's
+    half-width plus the search range away from both images' edges."""
+    margin = params.template_px / 2.0 + params.search_px + 2
+    corners = np.array([[0, 0], [target.width, 0], [target.width, target.height], [0, target.height]], float)
+    foot = model.apply(corners)
+    lo = np.maximum(foot.min(axis=0), 0) + margin
+    hi = np.minimum(foot.max(axis=0), [reference.width, reference.height]) - margin
+    if np.any(hi <= lo):
+        return np.zeros((0, 2))
+    inset = np.array([[margin, margin], [target.width - margin, margin], [target.width - margin,
+                     target.height - margin], [margin, target.height - margin]])
+    poly = model.apply(inset).astype(np.float32)
+    step = max(np.sqrt(np.prod(hi - lo) / (2.0 * params.max_points)), 1.0)
+    gx, gy = np.meshgrid(np.arange(lo[0], hi[0], step), np.arange(lo[1], hi[1], step))
+    pts = np.column_stack([gx.ravel(), gy.ravel()])
+    inside = np.array([cv2.pointPolygonTest(poly, (float(x), float(y)), False) >= 0 for x, y in pts], bool)
+    pts = pts[inside]
+    if len(pts) > params.max_points:
+        pts = pts[np.linspace(0, len(pts) - 1, params.max_points).round().astype(int)]
+    return pts
 
 
 def spread_subset(xy: np.ndarray, score: np.ndarray, limit: int) -> np.ndarray:

@@ -4,12 +4,12 @@
 <context>
     <name>HamtaProvider</name>
     <message>
-        <location filename="../processing/provider.py" line="20"/>
+        <location filename="../processing/provider.py" line="21"/>
         <source>Hamta</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/provider.py" line="23"/>
+        <location filename="../processing/provider.py" line="24"/>
         <source>Hamta automatic georeferencing</source>
         <translation type="unfinished"></translation>
     </message>
@@ -294,6 +294,16 @@
     <message>
         <location filename="../processing/register_algorithm.py" line="285"/>
         <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="299"/>
+        <source>Register SAR image onto SAR image (ND-SIFT + phase congruency)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="301"/>
+        <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -1,14 +1,15 @@
-<?xml version='1.0' encoding='utf-8'?>
+<?xml version="1.0" encoding="utf-8"?>
+<!DOCTYPE TS>
 <TS version="2.1" language="fa">
 <context>
     <name>HamtaProvider</name>
     <message>
-        <location filename="../processing/provider.py" line="20" />
+        <location filename="../processing/provider.py" line="21"/>
         <source>Hamta</source>
         <translation>همتا</translation>
     </message>
     <message>
-        <location filename="../processing/provider.py" line="23" />
+        <location filename="../processing/provider.py" line="24"/>
         <source>Hamta automatic georeferencing</source>
         <translation>زمین‌مرجع‌سازی خودکار همتا</translation>
     </message>
@@ -16,284 +17,294 @@
 <context>
     <name>RegisterAlgorithm</name>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22" />
+        <location filename="../processing/register_algorithm.py" line="22"/>
         <source>Similarity (Helmert)</source>
         <translation>تشابهی (هلمرت)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22" />
+        <location filename="../processing/register_algorithm.py" line="22"/>
         <source>Affine (polynomial 1)</source>
         <translation>آفین (چندجمله‌ای درجه ۱)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22" />
+        <location filename="../processing/register_algorithm.py" line="22"/>
         <source>Projective</source>
         <translation>تصویری</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22" />
+        <location filename="../processing/register_algorithm.py" line="22"/>
         <source>Polynomial 2</source>
         <translation>چندجمله‌ای درجه ۲</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22" />
+        <location filename="../processing/register_algorithm.py" line="22"/>
         <source>Polynomial 3</source>
         <translation>چندجمله‌ای درجه ۳</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22" />
+        <location filename="../processing/register_algorithm.py" line="22"/>
         <source>Thin plate spline</source>
         <translation>اسپلاین صفحه نازک</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30" />
+        <location filename="../processing/register_algorithm.py" line="30"/>
         <source>Nearest neighbour</source>
         <translation>نزدیک‌ترین همسایه</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30" />
+        <location filename="../processing/register_algorithm.py" line="30"/>
         <source>Bilinear</source>
         <translation>دوخطی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30" />
+        <location filename="../processing/register_algorithm.py" line="30"/>
         <source>Cubic</source>
         <translation>مکعبی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30" />
+        <location filename="../processing/register_algorithm.py" line="30"/>
         <source>Cubic B-spline</source>
         <translation>بی‌اسپلاین مکعبی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30" />
+        <location filename="../processing/register_algorithm.py" line="30"/>
         <source>Lanczos</source>
         <translation>لانچوس</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="37" />
+        <location filename="../processing/register_algorithm.py" line="37"/>
         <source>Automatic</source>
         <translation>خودکار</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="37" />
+        <location filename="../processing/register_algorithm.py" line="37"/>
         <source>Reference pixel grid</source>
         <translation>شبکه پیکسلی تصویر مرجع</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="37" />
-        <source>Target's native resolution</source>
+        <location filename="../processing/register_algorithm.py" line="37"/>
+        <source>Target&apos;s native resolution</source>
         <translation>تفکیک‌پذیری اصلی تصویر هدف</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="42" />
+        <location filename="../processing/register_algorithm.py" line="42"/>
         <source>Automatic (when images were decimated)</source>
         <translation>خودکار (وقتی تصاویر کوچک‌نمایی شده باشند)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="42" />
+        <location filename="../processing/register_algorithm.py" line="42"/>
         <source>Always</source>
         <translation>همیشه</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="42" />
+        <location filename="../processing/register_algorithm.py" line="42"/>
         <source>Never</source>
         <translation>هرگز</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="47" />
+        <location filename="../processing/register_algorithm.py" line="47"/>
         <source>Use when it overlaps the reference</source>
         <translation>اگر با مرجع همپوشانی دارد، استفاده شود</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="47" />
+        <location filename="../processing/register_algorithm.py" line="47"/>
         <source>Always use (fail otherwise)</source>
         <translation>همیشه استفاده شود (در غیر این صورت خطا)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="47" />
+        <location filename="../processing/register_algorithm.py" line="47"/>
         <source>Ignore</source>
         <translation>نادیده گرفته شود</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="87" />
+        <location filename="../processing/register_algorithm.py" line="87"/>
         <source>Registration</source>
         <translation>ثبت تصویر</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="96" />
+        <location filename="../processing/register_algorithm.py" line="96"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation>زمین‌مرجع‌سازی,هم‌ثبت‌سازی,ثبت,نقطه کنترل,تطابق,هم‌ترازی,تبدیل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="101" />
+        <location filename="../processing/register_algorithm.py" line="101"/>
         <source>Target raster (to georeference)</source>
         <translation>رستر هدف (برای زمین‌مرجع‌سازی)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="102" />
+        <location filename="../processing/register_algorithm.py" line="102"/>
         <source>Reference raster</source>
         <translation>رستر مرجع</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="104" />
+        <location filename="../processing/register_algorithm.py" line="104"/>
         <source>Transformation</source>
         <translation>تبدیل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="107" />
+        <location filename="../processing/register_algorithm.py" line="107"/>
         <source>Resampling</source>
         <translation>بازنمونه‌برداری</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="109" />
+        <location filename="../processing/register_algorithm.py" line="109"/>
         <source>Target band to match (empty: luminance of RGB, else band 1)</source>
         <translation>باند هدف برای تطابق (خالی: روشنایی RGB، وگرنه باند ۱)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="112" />
+        <location filename="../processing/register_algorithm.py" line="112"/>
         <source>Reference band to match</source>
         <translation>باند مرجع برای تطابق</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="115" />
-        <source>Target's own georeferencing</source>
+        <location filename="../processing/register_algorithm.py" line="115"/>
+        <source>Target&apos;s own georeferencing</source>
         <translation>زمین‌مرجع موجود تصویر هدف</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="118" />
+        <location filename="../processing/register_algorithm.py" line="118"/>
         <source>Output pixel grid</source>
         <translation>شبکه پیکسلی خروجی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="120" />
+        <location filename="../processing/register_algorithm.py" line="120"/>
         <source>Full-resolution refinement</source>
         <translation>پالایش در تفکیک‌پذیری کامل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="123" />
+        <location filename="../processing/register_algorithm.py" line="123"/>
         <source>Working image size (pixels)</source>
         <translation>اندازه تصویر کاری (پیکسل)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="126" />
+        <location filename="../processing/register_algorithm.py" line="126"/>
         <source>RANSAC tolerance (working pixels)</source>
         <translation>آستانه RANSAC (پیکسل کاری)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="129" />
+        <location filename="../processing/register_algorithm.py" line="129"/>
         <source>Maximum number of GCPs</source>
         <translation>بیشینه تعداد نقاط کنترل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="132" />
+        <location filename="../processing/register_algorithm.py" line="132"/>
         <source>Random seed</source>
         <translation>بذر تصادفی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="137" />
+        <location filename="../processing/register_algorithm.py" line="137"/>
         <source>Georeferenced raster</source>
         <translation>رستر زمین‌مرجع‌شده</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="138" />
+        <location filename="../processing/register_algorithm.py" line="138"/>
         <source>GCP points</source>
         <translation>نقاط کنترل زمینی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="140" />
+        <location filename="../processing/register_algorithm.py" line="140"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation>پرونده نقاط کنترل برای Georeferencer کیوجی‌آی‌اس</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="140" />
+        <location filename="../processing/register_algorithm.py" line="140"/>
         <source>GCP points (*.points)</source>
         <translation>نقاط کنترل (*.points)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="143" />
+        <location filename="../processing/register_algorithm.py" line="143"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation>تصویر هدف همراه نقاط کنترل، بدون بازنمونه‌برداری (VRT)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="143" />
+        <location filename="../processing/register_algorithm.py" line="143"/>
         <source>VRT (*.vrt)</source>
         <translation>VRT (*.vrt)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146" />
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>Report</source>
         <translation>گزارش</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146" />
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>JSON (*.json)</source>
         <translation>JSON (*.json)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="148" />
+        <location filename="../processing/register_algorithm.py" line="148"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation>RMSE نقاط کنترل (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149" />
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation>RMS به روش حذف تک‌نقطه (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150" />
+        <location filename="../processing/register_algorithm.py" line="150"/>
         <source>Number of GCPs</source>
         <translation>تعداد نقاط کنترل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="176" />
-        <source>{} must be a raster file GDAL can read, not a '{}' layer.</source>
+        <location filename="../processing/register_algorithm.py" line="176"/>
+        <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation>{} باید پرونده رستری قابل خواندن با GDAL باشد، نه لایه‌ای از نوع «{}».</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="220" />
+        <location filename="../processing/register_algorithm.py" line="220"/>
         <source>GCP points must be written to a GeoPackage (.gpkg) file.</source>
         <translation>نقاط کنترل باید در پرونده ژئوپکیج (.gpkg) نوشته شوند.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="238" />
+        <location filename="../processing/register_algorithm.py" line="238"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation>ثبت تصویر لغو شد؛ هیچ خروجی‌ای نوشته نشد.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="242" />
+        <location filename="../processing/register_algorithm.py" line="242"/>
         <source>{} GCPs from {} matches; RMSE {:.3f} px, leave-one-out RMS {} px.</source>
         <translation>{} نقطه کنترل از {} تطابق؛ RMSE برابر {:.3f} پیکسل، RMS حذف تک‌نقطه {} پیکسل.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="254" />
+        <location filename="../processing/register_algorithm.py" line="254"/>
         <source>Register raster (SIFT baseline)</source>
         <translation>ثبت رستر (پایه SIFT)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="255" />
-        <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe's ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.&lt;br&gt;&lt;br&gt;Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</source>
+        <location filename="../processing/register_algorithm.py" line="255"/>
+        <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.&lt;br&gt;&lt;br&gt;Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</source>
         <translation>رستر هدف را به‌طور خودکار روی رستر مرجع ثبت می‌کند: نقاط کلیدی SIFT از OpenCV، آزمون نسبت لو با بررسی دوطرفه، RANSAC با بذر ثابت، پالایش در تفکیک‌پذیری کامل، و برازش تبدیل انتخاب‌شده روی نقاط کنترلِ خوب‌پراکنده. رستر زمین‌مرجع‌شده و نقاط کنترل را به‌صورت لایه نقطه‌ای می‌نویسد و در صورت درخواست، پرونده .points برای Georeferencer کیوجی‌آی‌اس، یک VRT همراه نقاط کنترل و گزارشی به قالب JSON.&lt;br&gt;&lt;br&gt;مرجع: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="268" />
+        <location filename="../processing/register_algorithm.py" line="268"/>
         <source>Register satellite image (RILBP, rotation-invariant)</source>
         <translation>ثبت تصویر ماهواره‌ای (RILBP، مستقل از دوران)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="269" />
-        <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel's radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method 'rilbp-faithful' is the paper as written.&lt;br&gt;&lt;br&gt;Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</source>
+        <location filename="../processing/register_algorithm.py" line="269"/>
+        <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</source>
         <translation>تصویر ماهواره‌ای اپتیکی را با هر مقدار دوران نسبت به مرجع ثبت می‌کند: نقاط کلیدی CenSurE با فیلترهای هشت‌ضلعی که با توصیفگر الگوی باینری محلی مستقل از دوران توصیف می‌شوند (حلقه‌ها، زیرنواحی مبتنی بر ترتیب شدت، LBP متقارن مرکزی در دستگاه مختصات شعاعی هر پیکسل؛ بدون مرحلهٔ تعیین جهت)، تناظریابی دوطرفه با آزمون نسبت، RANSAC با بذر ثابت و برازش تبدیل انتخاب‌شده روی نقاط کنترلِ خوب‌پراکنده. پیش‌فرض‌های محصول، نقاط کلیدی زیرپیکسلی و کدهای هموارشده با شعاع ۲ را می‌افزایند؛ روش «rilbp-faithful» در خط فرمان نسخهٔ مطابق مقاله است.&lt;br&gt;&lt;br&gt;مرجع: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="284" />
+        <location filename="../processing/register_algorithm.py" line="284"/>
         <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
         <translation>ثبت تصویر هوایی روی تصویر ماهواره‌ای (SIBRIF، سریع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="285" />
-        <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method 'sibrif-faithful' is the paper as written.&lt;br&gt;&lt;br&gt;Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
+        <location filename="../processing/register_algorithm.py" line="285"/>
+        <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
         <translation>تصویر هوایی (یا هر تصویر اپتیکی) را به‌سرعت روی تصویر ماهواره‌ای مرجع ثبت می‌کند: نقاط کلیدی تفاضل گوسی SIFT که روی تصویر لبهٔ آستانه‌گذاری‌شدهٔ سوبل آشکار می‌شوند، توصیفگرهای دودویی rBRIEF که با مرکز ثقل شدت جهت‌دهی می‌شوند، حذف نقاط کلیدی خودمشابه، تناظریابی دوطرفه با فاصلهٔ همینگ و RANSAC با نمونه‌های آفین. نقاط کلیدی کم‌شمار و قوی آن را چند برابر سریع‌تر از SIFT می‌کنند. پیش‌فرض‌های محصول هر نقطه را در مقیاس خودش توصیف می‌کنند و آزمون نسبت را می‌افزایند؛ روش «sibrif-faithful» در خط فرمان نسخهٔ مطابق مقاله است.&lt;br&gt;&lt;br&gt;مرجع: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="299"/>
+        <source>Register SAR image onto SAR image (ND-SIFT + phase congruency)</source>
+        <translation>ثبت تصویر SAR روی تصویر SAR (ND-SIFT + همدوسی فاز)</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="301"/>
+        <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</source>
+        <translation>تصویر SAR را با وجود اسپکل روی تصویر SAR مرجع (تاریخ، باند یا قطبش دیگر) ثبت می‌کند: فضای مقیاس پخش غیرخطی که رسانایی آن از گرادیان ROEWA مقاوم در برابر اسپکل استفاده می‌کند، نقاط کلیدی و توصیفگرهای SIFT روی آن، نگه‌داشتن نقاط کلیدی فقط جایی که همدوسی فاز ساختار واقعی نشان می‌دهد، تناظریابی با آزمون نسبت، RANSAC با بذر ثابت، سپس پالایش همبستگی روی یک شبکه با تفکیک کامل. تعیین کنید رسترها چه چیزی دارند (دامنه، شدت یا دسی‌بل؛ داده‌های مختلط به‌صورت دامنه خوانده می‌شوند). پیش‌فرض‌های محصول پیش‌هموارسازی می‌کنند و آزمون نسبت یک‌طرفه به کار می‌برند؛ روش «ndsift-pc-faithful» در خط فرمان نسخهٔ مطابق مقاله است.&lt;br&gt;&lt;br&gt;مرجع: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</translation>
     </message>
 </context>
 </TS>

@@ -7,7 +7,8 @@ from qgis.core import QgsProcessingProvider
 from qgis.PyQt.QtCore import QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
-from .register_algorithm import RegisterRilbpAlgorithm, RegisterSibrifAlgorithm, RegisterSiftAlgorithm
+from .register_algorithm import (RegisterNdsiftAlgorithm, RegisterRilbpAlgorithm, RegisterSibrifAlgorithm,
+                                 RegisterSiftAlgorithm)
 
 ICON = os.path.join(os.path.dirname(os.path.dirname(__file__)), "icon.svg")
 
@@ -26,7 +27,8 @@ class HamtaProvider(QgsProcessingProvider):
         return QIcon(ICON)
 
     def loadAlgorithms(self):
-        for alg in (RegisterSiftAlgorithm(), RegisterRilbpAlgorithm(), RegisterSibrifAlgorithm()):
+        for alg in (RegisterSiftAlgorithm(), RegisterRilbpAlgorithm(), RegisterSibrifAlgorithm(),
+                    RegisterNdsiftAlgorithm()):
             self.addAlgorithm(alg)
 
     def supportedOutputRasterLayerExtensions(self):

@@ -291,3 +291,21 @@ class RegisterSibrifAlgorithm(RegisterAlgorithm):
         "own scale and add a ratio test; the CLI method 'sibrif-faithful' is the paper as written."
         "<br><br>Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image "
         "matching based on selective scale and rotation (SIBRIF).")
+
+
+class RegisterNdsiftAlgorithm(RegisterAlgorithm):
+    METHOD = "ndsift-pc"
+    ALG_NAME = "registerndsift"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("RegisterAlgorithm",
+                                     "Register SAR image onto SAR image (ND-SIFT + phase congruency)")
+    HELP = QT_TRANSLATE_NOOP(
+        "RegisterAlgorithm",
+        "Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a "
+        "nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints "
+        "and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test "
+        "matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters "
+        "hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use "
+        "a one-way ratio test; the CLI method 'ndsift-pc-faithful' is the paper as written."
+        "<br><br>Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration "
+        "using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters "
+        "12(3):562-566, doi:10.1109/LGRS.2014.2351396")

@@ -75,8 +75,8 @@ def orientations(level: np.ndarray, xy: np.ndarray, sigma: np.ndarray) -> Tuple[
     left, right = np.roll(hist, 1, axis=1), np.roll(hist, -1, axis=1)
     peak = (hist > left) & (hist > right) & (hist >= 0.8 * hist.max(axis=1, keepdims=True))
     ki, bi = np.nonzero(peak)
-    l, c, r = left[ki, bi], hist[ki, bi], right[ki, bi]
-    angle = ((bi + 0.5 * (l - r) / (l - 2 * c + r)) * 360.0 / ORI_BINS) % 360.0
+    lo, c, hi = left[ki, bi], hist[ki, bi], right[ki, bi]
+    angle = ((bi + 0.5 * (lo - hi) / (lo - 2 * c + hi)) * 360.0 / ORI_BINS) % 360.0
     return ki, angle
 
 

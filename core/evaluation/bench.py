@@ -8,7 +8,9 @@ returned mapping is judged against ground truth (:mod:`hamta.core.evaluation.met
 from __future__ import annotations
 
 import concurrent.futures as cf
+import ctypes
 import datetime
+import gc
 import json
 import math
 import multiprocessing
@@ -46,7 +48,7 @@ class BenchConfig:
     reproductions: bool = True
 
     def resolved(self) -> "BenchConfig":
-        methods = [m for m in (self.methods or all_methods()) if m != BASELINE]
+        methods = [m for m in (self.methods or default_methods(self.quick)) if m != BASELINE]
         methods.insert(0, BASELINE)  # the baseline always runs, first, so ratios have a reference
         unknown = [f for f in self.families if f not in FAMILIES]
         if unknown:
@@ -56,6 +58,16 @@ class BenchConfig:
             parse_variant(m)  # raises on unknown methods, parameters or options
         return BenchConfig(tuple(methods), tuple(self.families), self.size, self.quick, max(1, self.jobs),
                            os.path.abspath(self.out_dir), self.data_dir or default_data_dir(), self.reproductions)
+
+
+QUICK_BASELINES = ("sift", "orb", "phasecorr")
+
+
+def default_methods(quick: bool) -> list:
+    """Every method; for a quick run the product methods and the generic baselines only (the
+    faithful versions and the papers' own baselines belong to full runs)."""
+    return [name for name, m in all_methods().items()
+            if not quick or m.kind == "method" or name in QUICK_BASELINES]
 
 
 def parse_variant(text: str):
@@ -105,15 +117,19 @@ def expand_sweep(methods: Sequence[str], sweeps: Sequence[str]) -> List[str]:
 
 
 class _PeakRss:
-    """Peak resident memory of this process during a block (exact when it sets a new process peak,
-    else sampled every 5 ms)."""
+    """Peak resident memory of this process during a block. Freed heap is first returned to the
+    system and the kernel's high-water mark reset (Linux), so a case is not charged with what an
+    earlier case in the same worker left behind; elsewhere the resident size is sampled every 5 ms."""
 
     def __enter__(self):
-        self.start_max = _maxrss_mb()
+        gc.collect()
+        self.exact = _reset_peak()
         self.peak = _rss_mb()
         self._stop = threading.Event()
-        self._thread = threading.Thread(target=self._sample, daemon=True)
-        self._thread.start()
+        self._thread = None
+        if not self.exact:
+            self._thread = threading.Thread(target=self._sample, daemon=True)
+            self._thread.start()
         return self
 
     def _sample(self):
@@ -122,10 +138,29 @@ class _PeakRss:
 
     def __exit__(self, *exc):
         self._stop.set()
-        self._thread.join()
-        end_max = _maxrss_mb()
-        self.peak = end_max if end_max > self.start_max else max(self.peak, _rss_mb())
+        if self._thread is not None:
+            self._thread.join()
+        self.peak = _hwm_mb() if self.exact else max(self.peak, _rss_mb())
         return False
+
+
+def _reset_peak() -> bool:
+    """Trim the C heap and reset VmHWM; False where that is not possible."""
+    try:
+        ctypes.CDLL("libc.so.6").malloc_trim(0)
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")
+        return _hwm_mb() > 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _hwm_mb() -> float:
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 1024.0
+    return 0.0
 
 
 def _rss_mb() -> float:
@@ -317,7 +352,8 @@ def _cells(method: str, s: dict) -> List[str]:
         return "–" if v is None or (isinstance(v, float) and math.isnan(v)) else format(v, fmt)
 
     return [method, f"{s['n_success']}/{s['n_cases']} ({100 * s['success_rate']:.0f}%)",
-            f"{100 * s.get('hardest_third_success', 0):.0f}%", num(s["median_rmse_cp"], ".3f"), num(s["p90_rmse_cp"], ".3f"), num(s["median_ncm"], ".0f"),
+            f"{100 * s.get('hardest_third_success', 0):.0f}%", num(s["median_rmse_cp"], ".3f"),
+            num(s["p90_rmse_cp"], ".3f"), num(s["median_ncm"], ".0f"),
             num(s["median_precision"], ".2f"), num(s["median_time_s"], ".2f"), num(s["time_ratio_to_sift"], ".2f"),
             num(s["median_peak_rss_mb"], ".0f")]
 

@@ -20,6 +20,7 @@ import numpy as np
 from affine import Affine
 
 from ..coords import apply_matrix, compose
+from ..preprocess.sar import lee_filter
 from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
 from .synthetic import make_landscape
 
@@ -56,9 +57,10 @@ def default_data_dir() -> str:
 # ----------------------------------------------------------------------------------------------
 
 @lru_cache(maxsize=8)
-def load_source(name: str, size: int, data_dir: str) -> Canvas:
+def load_source(name: str, size: int, data_dir: str, upsample: bool = True) -> Canvas:
     """Source image ``name`` resized so that its longest side is ``size`` px (georeferencing kept
-    or, for plain images, a nominal 10 m UTM 39N grid so that references are georeferenced)."""
+    or, for plain images, a nominal 10 m UTM 39N grid so that references are georeferenced).
+    With ``upsample`` False a smaller image keeps its native size."""
     path = os.path.join(data_dir, SOURCE_FILES[name]) if name in SOURCE_FILES else None
     if path is None or not os.path.exists(path):
         return _landscape(size)
@@ -66,7 +68,7 @@ def load_source(name: str, size: int, data_dir: str) -> Canvas:
     if canvas.data.shape[0] == 3 and name != "landsat":
         canvas = Canvas(canvas.data.mean(axis=0, keepdims=True), canvas.valid, canvas.crs, canvas.transform,
                         canvas.dtype)
-    return _resized(canvas, size)
+    return _resized(canvas, size if upsample else min(size, max(canvas.shape)))
 
 
 def _landscape(size: int) -> Canvas:
@@ -116,18 +118,34 @@ def gain_offset(a, b):
     return lambda v, rng: a * v + b
 
 
-def speckle(looks):
-    """Multiplicative Gamma speckle with ``looks`` looks on intensity; returns amplitude."""
+def speckle(looks, grain: float = 0.0):
+    """Multiplicative speckle with ``looks`` looks on intensity; returns amplitude.
+
+    ``grain`` = 0 gives independent Gamma speckle (the usual simulation). ``grain`` > 0 gives
+    SAR-like correlated speckle: each look is the intensity of a circular complex Gaussian field
+    smoothed by a Gaussian point spread function of that sigma (px), normalised to mean 1. The
+    real SAR development image has a lag-1 speckle autocorrelation of about 0.55, which sigma 0.9
+    reproduces (intensity autocorrelation exp(-d^2 / (2 sigma^2)) at lag d)."""
     def apply(v, rng):
-        intensity = np.maximum(v, 0.0) ** 2
-        return np.sqrt(intensity * rng.gamma(looks, 1.0 / looks, size=v.shape)).astype(np.float32)
+        if grain > 0:
+            mult = np.zeros(v.shape, np.float64)
+            for _ in range(looks):
+                for plane in mult.reshape(-1, *v.shape[-2:]):
+                    z = [cv2.GaussianBlur(rng.standard_normal(v.shape[-2:]), (0, 0), grain) for _ in range(2)]
+                    look = z[0] ** 2 + z[1] ** 2
+                    plane += look / look.mean()
+            mult /= looks
+        else:
+            mult = rng.gamma(looks, 1.0 / looks, size=v.shape)
+        return np.sqrt(np.maximum(v, 0.0) ** 2 * mult).astype(np.float32)
     return apply
 
 
 def despeckled(canvas: Canvas) -> Canvas:
-    """A 3 x 3 boxcar of intensity: the real SAR image's own speckle mostly averaged out, so the
-    two sides' new speckle is (nearly) independent."""
-    data = np.sqrt(np.stack([cv2.blur(b * b, (3, 3)) for b in canvas.data]))
+    """The real SAR image's own (about 1-look) speckle removed by a 7 x 7 Lee filter on intensity
+    (equivalent number of looks about 0.9 -> 6 in its homogeneous areas), so that the speckle
+    added to each side is nearly independent, not a shared pattern that makes matching easy."""
+    data = np.sqrt(np.stack([lee_filter(b * b, looks=1.0, window=7) for b in canvas.data]))
     return Canvas(data.astype(np.float32), canvas.valid, canvas.crs, canvas.transform, canvas.dtype)
 
 
@@ -185,14 +203,19 @@ def _overlap(quick):
             for src in sources for f in fractions]
 
 
+SAR_GRAIN = 0.9  # px; see speckle()
+
+
 def _speckle(quick):
-    """Speckled pairs, independent speckle on each side; the SAR source (the real SAR image of the
-    SAR-optical development pair) gives SAR texture. Rotations up to 180 degrees and scales 0.6-1.6
-    make the hard cases where a detector's speckle handling matters."""
+    """Speckled pairs, independent speckle on each side. Landsat with independent Gamma speckle
+    (the usual simulation); the real SAR image of the SAR-optical development pair, its own speckle
+    averaged out, with SAR-like correlated speckle (``SAR_GRAIN``). Rotations up to 180 degrees and
+    scales 0.6-1.6 make the hard cases where a detector's speckle handling matters."""
     geoms = ((30, 1.25),) if quick else ((10, 0.8), (30, 1.25), (75, 0.6), (120, 1.6), (180, 1.0), (160, 0.7))
     looks = (1,) if quick else (1, 4)
     sources = ("sar",) if quick else ("landsat", "sar")
-    return [CaseSpec("speckle", f"{src}_L{L}_rot{a}_scale{s}", {"source": src, "looks": L, "angle": a, "scale": s})
+    return [CaseSpec("speckle", f"{src}_L{L}_rot{a}_scale{s}",
+                     {"source": src, "looks": L, "angle": a, "scale": s, "grain": SAR_GRAIN if src == "sar" else 0.0})
             for src in sources for L in looks for a, s in geoms]
 
 
@@ -237,7 +260,8 @@ def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
         return _pair_case(p["pair"], data_dir)
     if spec.family == "large":
         return _large_case(folder, name, p["size"], p["shift"])
-    canvas = load_source(p["source"], size, data_dir)
+    # Speckle lives at the sensor's resolution cell: an upsampled SAR image would carry it too fine.
+    canvas = load_source(p["source"], size, data_dir, upsample=not (spec.family == "speckle" and p["source"] == "sar"))
     ch, cw = canvas.shape
     centre = (cw / 2.0, ch / 2.0)
     info = {"family": spec.family, **p}
@@ -260,14 +284,14 @@ def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
     elif spec.family == "speckle":
         kw = {"angle_deg": p["angle"], "scale": p["scale"]}
         shape = (int(round(ch * p["scale"])), int(round(cw * p["scale"])))
-        radio, dtype = speckle(p["looks"]), "float32"
+        radio, dtype = speckle(p["looks"], p.get("grain", 0.0)), "float32"
     elif spec.family == "multimodal":
         kw = {"angle_deg": float(rng.uniform(0, 30)), "scale": float(rng.uniform(0.7, 1.4))}
         shape = (int(round(ch * kw["scale"])), int(round(cw * kw["scale"])))
         radio, dtype = nonlinear(p["mapping"], looks=1), "float32"
     info.update({k: v for k, v in kw.items()})
     g = target_matrix(shape, centre, shift=shift, **kw)
-    ref_radio = speckle(p["looks"]) if spec.family == "speckle" else None
+    ref_radio = speckle(p["looks"], p.get("grain", 0.0)) if spec.family == "speckle" else None
     if spec.family == "speckle" and p["source"] == "sar":
         canvas = despeckled(canvas)
     return warped_case(folder, name, canvas, g, shape, reference_radiometry=ref_radio, target_radiometry=radio,

@@ -11,6 +11,8 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Mapping, Optional
 
+from ..refine import RefineParams
+
 
 @dataclass(frozen=True)
 class Method:
@@ -38,6 +40,11 @@ class Method:
         Default outlier rejection: 'ransac', or 'none' for methods whose paper fits all matches.
     min_inliers : int
         Default fewest agreeing correspondences accepted as a registration.
+    refine : {'when-decimated', 'always'}
+        When the caller leaves refinement on 'auto': refine only when a working image was
+        decimated, or always (methods whose features are less precise than area correlation).
+    refinement : RefineParams
+        How this method's correspondences are refined at full resolution.
     kind : str
         'method' for the product version of a published method, 'faithful' for its as-published
         version, 'baseline' for the comparisons they are measured against.
@@ -54,6 +61,8 @@ class Method:
     ransac_threshold_px: float = 3.0
     robust: str = "ransac"
     min_inliers: int = 8
+    refine: str = "when-decimated"
+    refinement: RefineParams = RefineParams()
 
     def make_params(self, values: Optional[Mapping[str, Any]] = None):
         """Build the parameter dataclass from ``values`` (strings are converted); unknown keys fail."""

@@ -22,6 +22,8 @@ def test_quick_bench_runs_every_family_and_the_baselines_succeed_on_easy_cases(t
         assert s["success_rate"] == 1.0 and s["median_rmse_cp"] < 0.3, (family, s)
         assert s["median_precision"] > 0.9
     assert summary["rotation"]["orb"]["success_rate"] == 1.0
+    assert summary["speckle"]["ndsift-pc"]["median_rmse_cp"] < 0.5  # the 1-look SAR-like case
+    assert "bfsift" not in summary["speckle"]  # paper baselines belong to full runs
     assert summary["overlap"]["phasecorr"]["success_rate"] == 1.0  # a pure shift (plus < 10 degrees rotation)
     assert summary["rotation"]["phasecorr"]["success_rate"] == 0.0  # no rotation invariance, honestly reported
     mt = next(r for r in report["cases"] if r["case"] == "multitemporal" and r["method"] == "sift")

@@ -3,9 +3,12 @@ import json
 import os
 import subprocess
 
+import numpy as np
 import pytest
 from qgis.core import QgsProcessingException, QgsProcessingFeedback, QgsRasterLayer, QgsVectorLayer
 
+from hamta.core.mapping import map_points_from_report
+from hamta.core.outputs.report import read_report
 from hamta.processing.mapping import register_settings
 
 
@@ -38,9 +41,29 @@ def test_rilbp_algorithm_runs(provider, demo_pair, tmp_path):
     assert report["method"] == "rilbp" and res["N_GCPS"] >= 20
 
 
+def test_sar_algorithm_registers_a_speckled_pair(provider, shared, tmp_path):
+    import processing
+
+    from hamta.core.evaluation.families import CaseSpec, build_case
+
+    spec = CaseSpec("speckle", "sar_L4_rot30", {"source": "sar", "looks": 4, "angle": 30, "scale": 1.0, "grain": 0.9})
+    case = build_case(spec, str(tmp_path), 400, str(shared / "data"))
+    alg = provider.algorithm("registerndsift")
+    units = next(p for p in alg.parameterDefinitions() if p.name() == "P_UNITS")
+    assert units.options() == ["amplitude", "intensity", "db"]
+    res = processing.run("hamta:registerndsift", dict(TARGET=case.target, REFERENCE=case.reference, P_UNITS=0,
+                                                      OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json")))
+    report = read_report(res["REPORT"])
+    assert report["method"] == "ndsift-pc" and report["params"]["units"] == "amplitude"
+    assert report["stats"]["refined"]
+    check = map_points_from_report(res["REPORT"], case.check_points)
+    mapped = np.array([p["reference_px"] for p in check])
+    assert np.sqrt(np.mean(np.sum((mapped - case.truth(case.check_points)) ** 2, axis=1))) < 1.0
+
+
 def test_every_method_algorithm_is_listed(provider):
     ids = {a.name() for a in provider.algorithms()}
-    assert {"registersift", "registerrilbp", "registersibrif"} <= ids
+    assert {"registersift", "registerrilbp", "registersibrif", "registerndsift"} <= ids
     sibrif = provider.algorithm("registersibrif")
     enum = next(p for p in sibrif.parameterDefinitions() if p.name() == "P_MAGNITUDE")
     assert enum.options() == ["l1", "l2"]
