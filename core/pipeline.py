@@ -170,14 +170,19 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
                 points = ref_px[inliers][spread_subset(ref_px[inliers], score[inliers], rp.max_points)]
             span = monitor.span(0.75 + 0.15 * i / rp.passes, 0.75 + 0.15 * (i + 1) / rp.passes)
             r_tgt, r_ref, r_score = refine_points(linear, points, tgt_info, tgt_bands, ref_info, ref_bands, rp, span)
+            fallback = "working-resolution matches" if i == 0 else "previous pass"
             if len(r_tgt) < need:
-                notes.append(f"refinement kept only {len(r_tgt)} points; using the "
-                             + ("working-resolution matches" if i == 0 else "previous pass"))
-                refined = refined and i > 0
+                notes.append(f"refinement kept only {len(r_tgt)} points; using the {fallback}")
+                refined = i > 0
                 break
-            threshold = max(1.0, tolerance)
-            linear, inliers = _robust_linear(r_tgt, r_ref, linear_kind, threshold, options.seed, need, spec.name,
-                                             tgt_info.path, robust)
+            try:
+                fit = _robust_linear(r_tgt, r_ref, linear_kind, max(1.0, tolerance), options.seed, need, spec.name,
+                                     tgt_info.path, robust)
+            except InsufficientMatchesError as exc:
+                notes.append(f"refinement pass {i + 1} found no consistent model ({exc}); using the {fallback}")
+                refined = i > 0
+                break
+            (linear, inliers), threshold = fit, max(1.0, tolerance)
             tgt_px, ref_px, score = r_tgt, r_ref, r_score
             rp = replace(rp, search_px=min(rp.search_px, 3))  # later passes start from the refined model
     clock.lap("refine")

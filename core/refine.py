@@ -67,10 +67,12 @@ def grid_points(model: LinearModel, target: RasterInfo, reference: RasterInfo, p
     hi = np.minimum(foot.max(axis=0), [reference.width, reference.height]) - margin
     if np.any(hi <= lo):
         return np.zeros((0, 2))
-    inset = np.array([[margin, margin], [target.width - margin, margin], [target.width - margin,
-                     target.height - margin], [margin, target.height - margin]])
+    t = margin / max(np.sqrt(abs(np.linalg.det(model.matrix[:2, :2]))), 1e-6)  # the margin in target px
+    if 2 * t >= min(target.width, target.height):
+        return np.zeros((0, 2))
+    inset = np.array([[t, t], [target.width - t, t], [target.width - t, target.height - t], [t, target.height - t]])
     poly = model.apply(inset).astype(np.float32)
-    step = max(np.sqrt(np.prod(hi - lo) / (2.0 * params.max_points)), 1.0)
+    step = max(np.sqrt(cv2.contourArea(poly) / params.max_points), 1.0)
     gx, gy = np.meshgrid(np.arange(lo[0], hi[0], step), np.arange(lo[1], hi[1], step))
     pts = np.column_stack([gx.ravel(), gy.ravel()])
     inside = np.array([cv2.pointPolygonTest(poly, (float(x), float(y)), False) >= 0 for x, y in pts], bool)

@@ -184,8 +184,8 @@ def run_case(spec: CaseSpec, config: BenchConfig) -> List[dict]:
         name, params, overrides = parse_variant(method)
         options = RegisterOptions(**dict({"model": spec.model}, **overrides))
         result, error = None, None
-        t0 = time.perf_counter()
         with _PeakRss() as mem:
+            t0 = time.perf_counter()
             try:
                 result = register(case.target, case.reference, name, params=params, options=options)
             except (HamtaError, ValueError, np.linalg.LinAlgError) as exc:

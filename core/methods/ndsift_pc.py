@@ -122,8 +122,9 @@ def nonlinear_octaves(image: np.ndarray, valid: np.ndarray, params: NdsiftParams
     sig = level_sigmas(params)
     times = sig ** 2 / 2.0
     base = image.astype(np.float32)
-    if params.presmooth:
-        base = cv2.GaussianBlur(base, (0, 0), float(np.sqrt(sig[0] ** 2 - 0.25)))
+    presmooth = float(np.sqrt(max(sig[0] ** 2 - 0.25, 0.0)))  # the input already has sigma 0.5
+    if params.presmooth and presmooth > 0.05:
+        base = cv2.GaussianBlur(base, (0, 0), presmooth)
     grad = _gradient(base, params)
     k = contrast_factor(grad, valid, params.k_percentile)
     out = []
@@ -246,7 +247,7 @@ def match(target, reference, params: NdsiftParams, monitor: Monitor) -> Matches:
 SAR_REFINEMENT = RefineParams(template_px=64, search_px=8, min_ncc=0.2, points="grid", passes=2)
 
 _SUMMARY = ("Nonlinear diffusion scale space (ROEWA conductance, AOS) with SIFT, keypoints pruned by phase "
-            "congruency, dual ratio matching. For SAR-to-SAR registration (other date, band, polarisation).")
+            "congruency, ratio-test matching. For SAR-to-SAR registration (other date, band, polarisation).")
 
 METHOD = register_method(Method(
     name="ndsift-pc", title="ND-SIFT + phase congruency (SAR)",
@@ -256,8 +257,8 @@ METHOD = register_method(Method(
 
 FAITHFUL = register_method(Method(
     name="ndsift-pc-faithful", title="ND-SIFT + phase congruency, as published",
-    summary="The paper's pipeline and parameters: a least-squares similarity on all dual matches, no outlier "
-            "rejection.",
+    summary="The paper's pipeline and parameters: dual ratio matching, a least-squares similarity on all "
+            "matches, no outlier rejection.",
     citation=CITATION, params_type=NdsiftParams, match=match, default_model="similarity", kind="faithful",
     robust="none", min_inliers=4))
 

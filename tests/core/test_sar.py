@@ -168,3 +168,39 @@ def test_paper_pipeline_reports_table_two_diagnostics(easy_sar_case):
     ablation = register(easy_sar_case.target, easy_sar_case.reference, "ndss-sift")
     kp = ablation.diagnostics["keypoints_target"]
     assert kp["after_pc"] == kp["before_pc"] > 0
+
+
+def test_refinement_grid_covers_the_footprint_whatever_the_scale():
+    from types import SimpleNamespace
+
+    from hamta.core.estimation.models import LinearModel
+    from hamta.core.refine import RefineParams, grid_points
+
+    params = RefineParams(template_px=64, search_px=8, points="grid")
+    margin = 64 / 2 + 8 + 2
+    for scale, width in ((4.0, 120), (1.0, 500), (0.5, 1000)):  # target px -> reference px
+        model = LinearModel("affine", np.diag([scale, scale, 1.0]))
+        pts = grid_points(model, SimpleNamespace(width=width, height=width),
+                          SimpleNamespace(width=500, height=500), params)
+        assert 0.8 * params.max_points <= len(pts) <= params.max_points
+        assert pts.min() >= margin - 1e-9 and pts.max() <= 500 - margin + 1e-9
+        assert np.ptp(pts[:, 0]) > 0.75 * (500 - 2 * margin), scale  # not squeezed into the centre
+
+
+def test_a_failed_refinement_pass_falls_back_to_the_previous_one(easy_sar_case, monkeypatch):
+    import hamta.core.pipeline as pipeline
+
+    real, calls = pipeline.refine_points, []
+
+    def second_pass_is_garbage(model, points, *args):
+        calls.append(len(points))
+        t, r, s = real(model, points, *args)
+        if len(calls) == 2:
+            t = np.random.default_rng(0).uniform(0, 400, t.shape)  # no consistent model
+        return t, r, s
+
+    monkeypatch.setattr(pipeline, "refine_points", second_pass_is_garbage)
+    result = register(easy_sar_case.target, easy_sar_case.reference, "ndsift-pc")
+    assert len(calls) == 2 and result.stats["refined"]
+    assert any("refinement pass 2" in n for n in result.notes)
+    assert math.sqrt(np.mean(easy_sar_case.errors(result.model) ** 2)) < 0.5
