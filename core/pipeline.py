@@ -122,7 +122,10 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     spec = get_method(method)
     if params is None or isinstance(params, dict):
         params = spec.make_params(params)
-    model_kind = options.model or spec.default_model
+    options = replace(options, model=options.model or spec.default_model,
+                      ransac_threshold_px=options.ransac_threshold_px or spec.ransac_threshold_px,
+                      min_inliers=options.min_inliers or spec.min_inliers, robust=options.robust or spec.robust)
+    model_kind, robust, tolerance = options.model, options.robust, options.ransac_threshold_px
 
     tgt_info = open_raster(target, "target")
     ref_info = open_raster(reference, "reference")
@@ -143,10 +146,8 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     ref_px = ref.to_source.forward(matches.reference_xy) if len(matches) else np.zeros((0, 2))
     score = np.asarray(matches.score, float)
 
-    need = max(options.min_inliers or spec.min_inliers, MIN_POINTS[model_kind] + 2)
-    robust = options.robust or spec.robust
+    need = max(options.min_inliers, MIN_POINTS[model_kind] + 2)
     linear_kind = model_kind if model_kind in ("similarity", "affine") else "projective"
-    tolerance = options.ransac_threshold_px or spec.ransac_threshold_px
     threshold = tolerance * ref.source_px_per_working_px
     try:
         linear, inliers = _robust_linear(tgt_px, ref_px, linear_kind, threshold, options.seed, need, spec.name,
@@ -163,11 +164,13 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     refined = options.refine == "on" or (options.refine == "auto" and (spec.refine == "always" or decimation > 1.25))
     if refined:
         rp = replace(spec.refinement, search_px=max(spec.refinement.search_px, int(math.ceil(2.5 * decimation)) + 4))
+        fit_threshold = max(1.0, tolerance)
         for i in range(rp.passes):
             if rp.points == "grid":
                 points = grid_points(linear, tgt_info, ref_info, rp)
             else:
-                points = ref_px[inliers][spread_subset(ref_px[inliers], score[inliers], rp.max_points)]
+                kept = ref_px[inliers]
+                points = kept[spread_subset(kept, score[inliers], rp.max_points)]
             span = monitor.span(0.75 + 0.15 * i / rp.passes, 0.75 + 0.15 * (i + 1) / rp.passes)
             r_tgt, r_ref, r_score = refine_points(linear, points, tgt_info, tgt_bands, ref_info, ref_bands, rp, span)
             fallback = "working-resolution matches" if i == 0 else "previous pass"
@@ -176,13 +179,13 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
                 refined = i > 0
                 break
             try:
-                fit = _robust_linear(r_tgt, r_ref, linear_kind, max(1.0, tolerance), options.seed, need, spec.name,
-                                     tgt_info.path, robust)
+                linear, inliers = _robust_linear(r_tgt, r_ref, linear_kind, fit_threshold, options.seed, need,
+                                                 spec.name, tgt_info.path, robust)
             except InsufficientMatchesError as exc:
                 notes.append(f"refinement pass {i + 1} found no consistent model ({exc}); using the {fallback}")
                 refined = i > 0
                 break
-            (linear, inliers), threshold = fit, max(1.0, tolerance)
+            threshold = fit_threshold
             tgt_px, ref_px, score = r_tgt, r_ref, r_score
             rp = replace(rp, search_px=min(rp.search_px, 3))  # later passes start from the refined model
     clock.lap("refine")
@@ -192,7 +195,7 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     model, used, inliers = _final_fit(model_kind, tgt_px, ref_px, score, inliers, threshold, options.max_gcps, frame)
     clock.lap("fit")
 
-    result = _assemble(spec, params, options, model_kind, model, tgt_info, ref_info, plan, tgt_px, ref_px, score,
+    result = _assemble(spec, params, options, model, tgt_info, ref_info, plan, tgt_px, ref_px, score,
                        inliers, used, matches, raw, refined, notes, clock)
     monitor.report(1.0, "done")
     return result
@@ -246,7 +249,7 @@ def _final_fit(kind, tgt_px, ref_px, score, inliers, threshold, max_gcps, frame)
     return _fit(kind, tgt_px[used], ref_px[used], frame), used, inliers
 
 
-def _assemble(spec, params, options, kind, model, tgt_info, ref_info, plan, tgt_px, ref_px, score, inliers, used,
+def _assemble(spec, params, options, model, tgt_info, ref_info, plan, tgt_px, ref_px, score, inliers, used,
               matches, raw, refined, notes, clock):
     pixel_mode = not ref_info.georeferenced
     to_map = (lambda xy: xy) if pixel_mode else (lambda xy: pixel_to_map(ref_info.transform, xy))
@@ -270,11 +273,8 @@ def _assemble(spec, params, options, kind, model, tgt_info, ref_info, plan, tgt_
         "refined": bool(refined),
         "peak_rss_mb": _peak_rss_mb(),
     }
-    options_dict = dict(dataclasses.asdict(options), model=kind,
-                        ransac_threshold_px=options.ransac_threshold_px or spec.ransac_threshold_px,
-                        min_inliers=options.min_inliers or spec.min_inliers, robust=options.robust or spec.robust)
     return RegistrationResult(
-        method=spec.name, params=params_dict(params), options=options_dict, model=model, target=tgt_info,
+        method=spec.name, params=params_dict(params), options=dataclasses.asdict(options), model=model, target=tgt_info,
         reference=ref_info, plan=plan, gcps=gcps, stats=stats, timings=clock.as_dict(), notes=notes,
         diagnostics=dict(matches.diagnostics or {}), correspondences=raw,
     )

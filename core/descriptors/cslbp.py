@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .rilbp import _normalise
+from .normalise import l2_normalise
 
 
 @dataclass(frozen=True)
@@ -64,7 +64,7 @@ def cslbp_descriptors(patches: np.ndarray, params: CslbpParams = CslbpParams()) 
             cell = (cy * g + cx)[ok]
             index = (np.arange(k)[:, None] * dim + cell[None] * bins + codes[:, ok]).ravel()
             desc += np.bincount(index, weights=np.broadcast_to(w[ok], (k, ok.sum())).ravel(), minlength=k * dim)
-    return _normalise(desc.reshape(k, dim), params.clip)
+    return l2_normalise(desc.reshape(k, dim), params.clip)
 
 
 def _shifted(img, dx, dy, c, r):

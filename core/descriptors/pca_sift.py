@@ -19,7 +19,8 @@ from functools import lru_cache
 import cv2
 import numpy as np
 
-from ..features.patches import sample_patches
+from ..features.patches import patch_gradients, sample_patches
+from .normalise import l2_normalise
 
 PATCH_RADIUS = 20
 N_COMPONENTS = 36
@@ -31,10 +32,8 @@ def gradient_vectors(image: np.ndarray, xy: np.ndarray, size: np.ndarray, angle_
     support = 5.0 * np.asarray(size, float)  # 20 patch pixels = 10 keypoint sigmas (size = 2 sigma)
     patches = sample_patches(image.astype(np.float32), xy, support, PATCH_RADIUS, 0, angle_rad=angle_rad,
                              smoothing=2.0)
-    gx = patches[:, 1:-1, 2:] - patches[:, 1:-1, :-2]
-    gy = patches[:, 2:, 1:-1] - patches[:, :-2, 1:-1]
-    v = np.concatenate([gx.reshape(len(xy), -1), gy.reshape(len(xy), -1)], axis=1)
-    return v / np.maximum(np.linalg.norm(v, axis=1, keepdims=True), 1e-12)
+    gx, gy = patch_gradients(patches)
+    return l2_normalise(np.concatenate([gx.reshape(len(xy), -1), gy.reshape(len(xy), -1)], axis=1))
 
 
 @lru_cache(maxsize=1)

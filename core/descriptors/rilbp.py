@@ -27,6 +27,8 @@ from typing import Tuple
 import numpy as np
 from scipy import sparse
 
+from .normalise import l2_normalise
+
 
 @dataclass(frozen=True)
 class RilbpParams:
@@ -136,12 +138,6 @@ def rilbp_descriptors(patches: np.ndarray, params: RilbpParams = RilbpParams()) 
     bins = 2 ** n_half
     index = (np.arange(k)[:, None] * dim + group * bins + codes).ravel()
     desc = np.bincount(index, weights=np.broadcast_to(weight, (k, len(ring))).ravel(), minlength=k * dim)
-    return _normalise(desc.reshape(k, dim), params.clip)
+    return l2_normalise(desc.reshape(k, dim), params.clip)
 
 
-def _normalise(desc: np.ndarray, clip: float) -> np.ndarray:
-    desc = desc / np.maximum(np.linalg.norm(desc, axis=1, keepdims=True), 1e-12)
-    if clip > 0:
-        desc = np.minimum(desc, clip)
-        desc = desc / np.maximum(np.linalg.norm(desc, axis=1, keepdims=True), 1e-12)
-    return desc.astype(np.float32)

@@ -26,7 +26,8 @@ from typing import Tuple
 
 import numpy as np
 
-from ..features.patches import sample_patches
+from ..features.patches import patch_gradients, sample_patches
+from .normalise import l2_normalise
 
 ORI_BINS = 36
 ORI_HALF = 15
@@ -34,12 +35,7 @@ DESCR_WIDTH = 4
 DESCR_BINS = 8
 DESCR_HALF = 20
 DESCR_MAG_THR = 0.2
-
-
-def _gradients(patches: np.ndarray):
-    gx = patches[:, 1:-1, 2:] - patches[:, 1:-1, :-2]
-    gy = patches[:, 2:, 1:-1] - patches[:, :-2, 1:-1]
-    return gx, gy
+CHUNK = 256  # keypoints described at once
 
 
 def orientations(level: np.ndarray, xy: np.ndarray, sigma: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
@@ -61,7 +57,7 @@ def orientations(level: np.ndarray, xy: np.ndarray, sigma: np.ndarray) -> Tuple[
         return np.zeros(0, int), np.zeros(0)
     support = 4.5 * sigma * (ORI_HALF + 1) / ORI_HALF  # one extra sample for the central differences
     p = sample_patches(level, xy, support, ORI_HALF + 1, 0, antialias=False)
-    gx, gy = _gradients(p)
+    gx, gy = patch_gradients(p)
     off = np.arange(-ORI_HALF, ORI_HALF + 1)
     yy, xx = np.meshgrid(off, off, indexing="ij")
     spacing = 4.5 / ORI_HALF  # sigmas per grid step
@@ -109,18 +105,19 @@ def descriptors(level: np.ndarray, xy: np.ndarray, sigma: np.ndarray, angle_deg:
     half_width = 3.0 * sigma * (d / 2 + 0.5) * (DESCR_HALF + 1) / DESCR_HALF
     # sample_patches turns the patch x axis to angle_rad counter-clockwise as displayed
     p = sample_patches(level, xy, half_width, DESCR_HALF + 1, 0, angle_rad=-np.radians(angle_deg), antialias=False)
-    gx, gy = _gradients(p)
+    gx, gy = patch_gradients(p)
     mag = np.hypot(gx, gy).reshape(k, -1)
     obin = (np.degrees(np.arctan2(gy, gx)) % 360.0).reshape(k, -1) * (n / 360.0)
     o0 = np.floor(obin).astype(np.int64) % n
     fo = (obin - np.floor(obin)).astype(np.float32)
-    votes = np.zeros((k, n, mag.shape[1]), np.float32)
-    kk = np.arange(k)[:, None]
-    ss = np.arange(mag.shape[1])[None, :]
-    votes[kk, o0, ss] = mag * (1 - fo)  # each (keypoint, sample) votes into two adjacent bins
-    votes[kk, (o0 + 1) % n, ss] += mag * fo
-    hist = (votes @ _spatial_weights()).transpose(0, 2, 1).reshape(k, -1)  # (cell, orientation) order
-    hist /= np.maximum(np.linalg.norm(hist, axis=1, keepdims=True), 1e-12)
-    hist = np.minimum(hist, DESCR_MAG_THR)
-    hist /= np.maximum(np.linalg.norm(hist, axis=1, keepdims=True), 1e-12)
-    return hist.astype(np.float32)
+    hist = np.empty((k, n, d * d), np.float32)
+    votes = np.zeros((min(k, CHUNK), n, mag.shape[1]), np.float32)
+    for a in range(0, k, CHUNK):  # chunks bound the (keypoints, bins, samples) vote array
+        b = min(a + CHUNK, k)
+        v = votes[: b - a]
+        v[:] = 0
+        kk, ss = np.arange(b - a)[:, None], np.arange(mag.shape[1])[None, :]
+        v[kk, o0[a:b], ss] = mag[a:b] * (1 - fo[a:b])  # each (keypoint, sample) votes into two adjacent bins
+        v[kk, (o0[a:b] + 1) % n, ss] += mag[a:b] * fo[a:b]
+        hist[a:b] = v @ _spatial_weights()
+    return l2_normalise(hist.transpose(0, 2, 1).reshape(k, -1), DESCR_MAG_THR)  # (cell, orientation) order

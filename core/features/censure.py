@@ -26,6 +26,7 @@ import numpy as np
 
 from ..types import Keypoints
 from .extrema import scale_space_extrema
+from .patches import patch_gradients
 
 # (m, n) of the inner and outer octagons for scales 1..7 (Agrawal et al. 2008; paper's Table 1).
 OCTAGONS = (((3, 0), (5, 2)), ((3, 1), (5, 3)), ((3, 2), (7, 3)), ((5, 2), (9, 4)),
@@ -190,8 +191,7 @@ def _not_lines(resp, s_idx, ys, xs, ratio):
         rows = np.clip(ys[sel, None, None] + off[None, :, None], 0, h - 1)
         cols = np.clip(xs[sel, None, None] + off[None, None, :], 0, w - 1)
         win = resp[s][rows, cols].astype(np.float64)
-        gx = (win[:, 1:-1, 2:] - win[:, 1:-1, :-2]) / 2.0
-        gy = (win[:, 2:, 1:-1] - win[:, :-2, 1:-1]) / 2.0
+        gx, gy = patch_gradients(win)  # unscaled: the trace^2 / det test is scale-free
         sxx, syy, sxy = (gx * gx).sum(axis=(1, 2)), (gy * gy).sum(axis=(1, 2)), (gx * gy).sum(axis=(1, 2))
         det = sxx * syy - sxy * sxy
         keep[sel] = (det > 0) & ((sxx + syy) ** 2 < ratio * det)

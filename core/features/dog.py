@@ -35,33 +35,46 @@ class DogParams:
     max_keypoints: int = 0  # 0 = all
     border: int = 5
 
+    def level_sigmas(self) -> np.ndarray:
+        """sigma_k = sigma 2^(k / layers), k = 0 .. layers + 2, in octave-local pixels."""
+        return self.sigma * 2.0 ** (np.arange(self.layers + 3) / self.layers)
 
-def gaussian_octaves(image: np.ndarray, params: DogParams = DogParams(), assumed_blur: float = 0.5,
-                     min_size: int = 16) -> List[np.ndarray]:
-    """Gaussian scale space without Lowe's initial doubling: per octave a (layers + 3, H, W)
-    float32 stack with sigma_k = sigma * 2^(k / layers) relative to the octave's pixels."""
-    s = params.layers
-    sig = [params.sigma * 2 ** (k / s) for k in range(s + 3)]
-    base = cv2.GaussianBlur(image.astype(np.float32), (0, 0), math.sqrt(max(sig[0] ** 2 - assumed_blur ** 2, 0.01)))
+
+def build_octaves(base: np.ndarray, layers: int, next_levels, max_octaves: int = 0, min_size: int = 16):
+    """Octave stacks: ``next_levels(base, octave) -> list of levels``; each next octave starts from
+    level ``layers`` decimated by 2 (Lowe's convention), until ``max_octaves`` (0 = no limit) or
+    the image is smaller than ``min_size``."""
     octaves = []
-    while min(base.shape) >= min_size:
-        levels = [base]
-        for k in range(1, s + 3):
-            levels.append(cv2.GaussianBlur(levels[-1], (0, 0), math.sqrt(sig[k] ** 2 - sig[k - 1] ** 2)))
+    while (max_octaves <= 0 or len(octaves) < max_octaves) and min(base.shape) >= min_size:
+        levels = next_levels(base, len(octaves))
         octaves.append(np.stack(levels))
-        base = levels[s][::2, ::2].copy()
+        base = levels[layers][::2, ::2].copy()
     return octaves
 
 
-def dog_keypoints(octaves: List[np.ndarray], params: DogParams = DogParams(),
-                  level_sigmas=None) -> Tuple[Keypoints, np.ndarray, np.ndarray]:
+def gaussian_octaves(image: np.ndarray, params: DogParams = DogParams(), assumed_blur: float = 0.5,
+                     min_size: int = 16, max_octaves: int = 0) -> List[np.ndarray]:
+    """Gaussian scale space without Lowe's initial doubling: per octave a (layers + 3, H, W)
+    float32 stack with sigma_k = sigma * 2^(k / layers) relative to the octave's pixels."""
+    sig = params.level_sigmas()
+    base = cv2.GaussianBlur(image.astype(np.float32), (0, 0), math.sqrt(max(sig[0] ** 2 - assumed_blur ** 2, 0.01)))
+
+    def levels(b, _):
+        out = [b]
+        for k in range(1, len(sig)):
+            out.append(cv2.GaussianBlur(out[-1], (0, 0), math.sqrt(sig[k] ** 2 - sig[k - 1] ** 2)))
+        return out
+    return build_octaves(base, params.layers, levels, max_octaves, min_size)
+
+
+def dog_keypoints(octaves: List[np.ndarray],
+                  params: DogParams = DogParams()) -> Tuple[Keypoints, np.ndarray, np.ndarray]:
     """Keypoints of the difference of adjacent levels of each octave stack.
 
     Parameters
     ----------
-    octaves : list of (L, H, W) arrays, octave o at 1 / 2^o of the input resolution.
-    level_sigmas : (L,) optional scale of each level in its octave's pixels (default Lowe's
-        ``sigma * 2^(k / layers)``), used for the keypoint size.
+    octaves : list of (L, H, W) arrays, octave o at 1 / 2^o of the input resolution; level k has
+        scale ``params.level_sigmas()[k]`` in its octave's pixels (used for the keypoint size).
 
     Returns
     -------
@@ -78,7 +91,7 @@ def dog_keypoints(octaves: List[np.ndarray], params: DogParams = DogParams(),
         cand = scale_space_extrema(dog, 0.5 * params.contrast_threshold / s, end_layers=False, border=params.border)
         found = _refine(dog, cand, params)
         if len(found):
-            sig = level_sigmas if level_sigmas is not None else params.sigma * 2 ** (np.arange(len(stack)) / s)
+            sig = params.level_sigmas()
             layer_sigma = np.interp(found[:, 2], np.arange(len(sig)), sig)
             f = 2 ** o  # octave pixel centre i sits on input pixel centre f * i
             x = f * found[:, 0] + 0.5
@@ -100,11 +113,12 @@ def _refine(dog: np.ndarray, cand, params: DogParams) -> np.ndarray:
     layer, row, col = (a.astype(np.int64) for a in cand)
     n_layers, h, w = dog.shape
     alive = np.ones(len(layer), bool)
+    active = alive.copy()  # still moving
     offset = np.zeros((len(layer), 3))
     for _ in range(5):
-        if not alive.any():
+        idx = np.flatnonzero(active)
+        if len(idx) == 0:
             break
-        idx = np.flatnonzero(alive)
         g, hess = _derivatives(dog, layer[idx], row[idx], col[idx])
         det = np.linalg.det(hess)
         ok = np.abs(det) > 1e-12
@@ -114,6 +128,7 @@ def _refine(dog: np.ndarray, cand, params: DogParams) -> np.ndarray:
         offset[idx] = step
         done = np.all(np.abs(step) < 0.5, axis=1)
         move = ok & ~done
+        active[idx[~move]] = False
         m = idx[move]
         col[m] += np.round(step[move, 0]).astype(np.int64)
         row[m] += np.round(step[move, 1]).astype(np.int64)
@@ -121,12 +136,7 @@ def _refine(dog: np.ndarray, cand, params: DogParams) -> np.ndarray:
         inside = (layer[m] >= 1) & (layer[m] <= n_layers - 2) & (row[m] >= params.border) & \
                  (row[m] < h - params.border) & (col[m] >= params.border) & (col[m] < w - params.border)
         alive[m[~inside]] = False
-        if not move.any():
-            break
-    else:
-        idx = np.flatnonzero(alive)
-        g, _ = _derivatives(dog, layer[idx], row[idx], col[idx])
-        alive[idx[~np.all(np.abs(offset[idx]) < 0.5, axis=1)]] = False
+        active[m[~inside]] = False
     idx = np.flatnonzero(alive & np.all(np.abs(offset) < 0.5, axis=1))
     if len(idx) == 0:
         return np.zeros((0, 4))

@@ -78,6 +78,11 @@ def sample_patches(image: np.ndarray, xy: np.ndarray, support_radius: np.ndarray
     return out
 
 
+def patch_gradients(patches: np.ndarray):
+    """Central differences (unscaled) of a (K, S, S) stack over its (S-2) x (S-2) interior."""
+    return patches[:, 1:-1, 2:] - patches[:, 1:-1, :-2], patches[:, 2:, 1:-1] - patches[:, :-2, 1:-1]
+
+
 def dominant_orientation(patches: np.ndarray, radius: int = 20, bins: int = 36) -> np.ndarray:
     """SIFT-style dominant gradient orientation (Lowe 2004, section 5) of each patch, in radians,
     counter-clockwise as displayed: a magnitude- and Gaussian-weighted 36-bin histogram over the
@@ -85,8 +90,7 @@ def dominant_orientation(patches: np.ndarray, radius: int = 20, bins: int = 36) 
     k, size, _ = patches.shape
     c = size // 2
     p = patches.astype(np.float32, copy=False)
-    gx = (p[:, 1:-1, 2:] - p[:, 1:-1, :-2]) / 2.0
-    gy = (p[:, 2:, 1:-1] - p[:, :-2, 1:-1]) / 2.0
+    gx, gy = patch_gradients(p)
     yy, xx = np.mgrid[1:size - 1, 1:size - 1] - c
     disk = (xx ** 2 + yy ** 2) <= radius ** 2
     weight = (np.exp(-(xx ** 2 + yy ** 2) / (2.0 * (radius / 2.0) ** 2)) * disk).astype(np.float32)

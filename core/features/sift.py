@@ -60,6 +60,11 @@ def keypoints_from_opencv(kps, bias_px: float = 0.0) -> Keypoints:
     return Keypoints(xy, size, angle, response)
 
 
+def sift_keypoints(image: np.ndarray, mask=None, detector: SiftDetector = SiftDetector()) -> Keypoints:
+    """OpenCV SIFT detection only, with OpenCV's 0.25-px bias removed (corner convention)."""
+    return keypoints_from_opencv(detector.create().detect(image, mask), OPENCV_SIFT_BIAS_PX)
+
+
 def sift_features(image: np.ndarray, mask: np.ndarray, detector: SiftDetector = SiftDetector()) -> Features:
     """Detect and describe SIFT keypoints on an 8-bit image.
 

@@ -11,7 +11,10 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Mapping, Optional
 
+from ..matching.nearest import match_features
+from ..progress import Monitor
 from ..refine import RefineParams
+from ..types import Matches
 
 
 @dataclass(frozen=True)
@@ -107,6 +110,20 @@ def validate(params) -> None:
             raise ValueError(f"parameter {f.name} must be <= {hi}, got {v}")
         if choices is not None and v not in choices:
             raise ValueError(f"parameter {f.name} must be one of {choices}, got {v!r}")
+
+
+def match_with(features_fn: Callable, stage: str = "keypoints and descriptors") -> Callable:
+    """A method's ``match`` from ``features_fn(working_image, params) -> Features``: features of the
+    target, then of the reference, then the ratio test with ``params.ratio`` and ``params.cross_check``."""
+    def match(target, reference, params, monitor: Monitor) -> Matches:
+        ft = features_fn(target, params)
+        monitor.report(0.45, stage)
+        fr = features_fn(reference, params)
+        monitor.report(0.9, stage)
+        it, ir, score = match_features(ft, fr, ratio=params.ratio, cross_check=params.cross_check)
+        monitor.report(1.0, "matching")
+        return Matches(ft.keypoints.xy[it], fr.keypoints.xy[ir], score, len(ft), len(fr))
+    return match
 
 
 _REGISTRY: Dict[str, Method] = {}

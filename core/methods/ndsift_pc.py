@@ -25,7 +25,7 @@ import cv2
 import numpy as np
 
 from ..descriptors.sift_descriptor import descriptors, orientations
-from ..features.dog import DogParams, dog_keypoints, gaussian_octaves
+from ..features.dog import DogParams, build_octaves, dog_keypoints, gaussian_octaves
 from ..features.nonlinear import aos_step, contrast_factor, pm_conductance
 from ..features.phase_congruency import PhaseCongruencyParams, phase_congruency
 from ..features.roewa import roewa_magnitude
@@ -112,7 +112,7 @@ class BilateralParams(NdsiftParams):
 
 def level_sigmas(params: NdsiftParams) -> np.ndarray:
     """sigma_s = sigma_0 2^(s / S), s = 0 .. S + 2, in octave-local pixels (eq. 5)."""
-    return params.sigma0 * 2.0 ** (np.arange(params.layers + 3) / params.layers)
+    return DogParams(layers=params.layers, sigma=params.sigma0).level_sigmas()
 
 
 def nonlinear_octaves(image: np.ndarray, valid: np.ndarray, params: NdsiftParams) -> List[np.ndarray]:
@@ -126,20 +126,15 @@ def nonlinear_octaves(image: np.ndarray, valid: np.ndarray, params: NdsiftParams
     if params.presmooth and presmooth > 0.05:
         base = cv2.GaussianBlur(base, (0, 0), presmooth)
     grad = _gradient(base, params)
-    k = contrast_factor(grad, valid, params.k_percentile)
-    out = []
-    for _ in range(params.octaves):
-        if min(base.shape) < 16:
-            break
-        levels = [base]
-        for s in range(1, params.layers + 3):
-            g = grad if len(levels) == 1 and not out else _gradient(levels[-1], params)
-            c = pm_conductance(g, k, "c2")
-            levels.append(aos_step(levels[-1], c, float(times[s] - times[s - 1])))
-        out.append(np.stack(levels))
-        base = levels[params.layers][::2, ::2].copy()
-        k *= params.k_octave_factor
-    return out
+    k = np.cumprod([contrast_factor(grad, valid, params.k_percentile)] + [params.k_octave_factor] * params.octaves)
+
+    def levels(b, octave):
+        out = [b]
+        for s in range(1, len(sig)):
+            g = grad if s == 1 and octave == 0 else _gradient(out[-1], params)
+            out.append(aos_step(out[-1], pm_conductance(g, k[octave], "c2"), float(times[s] - times[s - 1])))
+        return out
+    return build_octaves(base, params.layers, levels, params.octaves)
 
 
 def _gradient(img: np.ndarray, params: NdsiftParams) -> np.ndarray:
@@ -153,15 +148,9 @@ def bilateral_octaves(image: np.ndarray, params: NdsiftParams) -> List[np.ndarra
     """BFSIFT's anisotropic scale space: every level a bilateral filtering of the octave's base
     (not iterated) with spatial sigma_s and a fixed range sigma."""
     sig = level_sigmas(params)
-    base = image.astype(np.float32)
-    out = []
-    for _ in range(params.octaves):
-        if min(base.shape) < 16:
-            break
-        levels = [cv2.bilateralFilter(base, -1, params.bilateral_range, float(s)) for s in sig]
-        out.append(np.stack(levels))
-        base = levels[params.layers][::2, ::2].copy()
-    return out
+    return build_octaves(image.astype(np.float32), params.layers,
+                         lambda b, _: [cv2.bilateralFilter(b, -1, params.bilateral_range, float(s)) for s in sig],
+                         params.octaves)
 
 
 def scale_space(image, valid, params: NdsiftParams) -> List[np.ndarray]:
@@ -170,7 +159,7 @@ def scale_space(image, valid, params: NdsiftParams) -> List[np.ndarray]:
     if params.scale_space == "bilateral":
         return bilateral_octaves(image, params)
     dog = DogParams(layers=params.layers, sigma=params.sigma0)
-    return gaussian_octaves(image, dog)[: params.octaves]
+    return gaussian_octaves(image, dog, max_octaves=params.octaves)
 
 
 def sar_features(img, params: NdsiftParams, info: dict = None) -> Features:
@@ -184,7 +173,7 @@ def sar_features(img, params: NdsiftParams, info: dict = None) -> Features:
     octaves = scale_space(amp, img.valid, params)
     dog = DogParams(layers=params.layers, sigma=params.sigma0, contrast_threshold=params.contrast_threshold,
                     edge_threshold=params.edge_threshold)
-    kp, octave, level = dog_keypoints(octaves, dog, level_sigmas=level_sigmas(params))
+    kp, octave, level = dog_keypoints(octaves, dog)
     keep = img.valid[np.clip(kp.xy[:, 1].astype(int), 0, img.valid.shape[0] - 1),
                      np.clip(kp.xy[:, 0].astype(int), 0, img.valid.shape[1] - 1)]
     if params.skip_first_octave:

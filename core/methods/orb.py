@@ -8,11 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..features.orb import OrbDetector, orb_features
-from ..matching.nearest import CROSS_CHECKS, match_features
+from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
-from ..progress import Monitor
-from ..types import Matches
-from . import Method, param, register_method, validate
+from . import Method, match_with, param, register_method, validate
 
 
 @dataclass(frozen=True)
@@ -29,18 +27,11 @@ class OrbParams:
         validate(self)
 
 
-def match(target, reference, params: OrbParams, monitor: Monitor) -> Matches:
-    """ORB on both working images (8-bit percentile stretch), ratio test, cross-check."""
+def orb_image_features(img, params: OrbParams):
+    """OpenCV ORB on a working image (8-bit percentile stretch)."""
     detector = OrbDetector(n_features=params.n_features, fast_threshold=params.fast_threshold,
                            n_levels=params.n_levels)
-    feats = []
-    for i, img in enumerate((target, reference)):
-        feats.append(orb_features(stretch_to_uint8(img.data, img.valid), detection_mask(img.valid, 16), detector))
-        monitor.report(0.4 * (i + 1), "ORB keypoints")
-    ft, fr = feats
-    it, ir, score = match_features(ft, fr, ratio=params.ratio, cross_check=params.cross_check)
-    monitor.report(1.0, "matching")
-    return Matches(ft.keypoints.xy[it], fr.keypoints.xy[ir], score, len(ft), len(fr))
+    return orb_features(stretch_to_uint8(img.data, img.valid), detection_mask(img.valid, 16), detector)
 
 
 METHOD = register_method(Method(
@@ -50,6 +41,6 @@ METHOD = register_method(Method(
             "Fast; weaker under large scale changes.",
     citation="Rublee et al. 2011, ICCV, doi:10.1109/ICCV.2011.6126544",
     params_type=OrbParams,
-    match=match,
+    match=match_with(orb_image_features, "ORB keypoints"),
     kind="baseline",
 ))

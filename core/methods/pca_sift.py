@@ -10,12 +10,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..descriptors.pca_sift import pca_sift_descriptors
-from ..features.sift import OPENCV_SIFT_BIAS_PX, SiftDetector, keypoints_from_opencv
-from ..matching.nearest import CROSS_CHECKS, match_features
+from ..features.sift import SiftDetector, sift_keypoints
+from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
-from ..progress import Monitor
-from ..types import Features, Keypoints, Matches
-from . import Method, param, register_method, validate
+from ..types import Features, Keypoints
+from . import Method, match_with, param, register_method, validate
 
 
 @dataclass(frozen=True)
@@ -31,22 +30,11 @@ class PcaSiftParams:
 
 def pca_sift_features(img, params: PcaSiftParams) -> Features:
     gray = stretch_to_uint8(img.data, img.valid)
-    kps = SiftDetector(n_features=params.n_features).create().detect(gray, detection_mask(img.valid))
-    kp = keypoints_from_opencv(kps, OPENCV_SIFT_BIAS_PX)
+    kp = sift_keypoints(gray, detection_mask(img.valid), SiftDetector(n_features=params.n_features))
     if len(kp) == 0:
         return Features(Keypoints.empty(), np.zeros((0, 36), np.float32), "l2")
     angle = -np.radians(kp.angle)  # OpenCV's angle is clockwise in degrees
     return Features(kp, pca_sift_descriptors(gray, kp.xy, kp.size, angle), "l2")
-
-
-def match(target, reference, params: PcaSiftParams, monitor: Monitor) -> Matches:
-    ft = pca_sift_features(target, params)
-    monitor.report(0.45, "SIFT keypoints, PCA-SIFT")
-    fr = pca_sift_features(reference, params)
-    monitor.report(0.9, "SIFT keypoints, PCA-SIFT")
-    it, ir, score = match_features(ft, fr, ratio=params.ratio, cross_check=params.cross_check)
-    monitor.report(1.0, "matching")
-    return Matches(ft.keypoints.xy[it], fr.keypoints.xy[ir], score, len(ft), len(fr))
 
 
 METHOD = register_method(Method(
@@ -55,4 +43,4 @@ METHOD = register_method(Method(
     summary="SIFT keypoints described by 41x41 gradient patches projected on a 36-D principal subspace learnt "
             "from real imagery (shipped with the package).",
     citation="Ke & Sukthankar 2004, CVPR, doi:10.1109/CVPR.2004.1315206",
-    params_type=PcaSiftParams, match=match, kind="baseline"))
+    params_type=PcaSiftParams, match=match_with(pca_sift_features, "SIFT keypoints, PCA-SIFT"), kind="baseline"))

@@ -23,11 +23,10 @@ import numpy as np
 from ..descriptors.rilbp import RilbpParams, rilbp_descriptors
 from ..features.censure import CensureDetector, censure_keypoints
 from ..features.patches import sample_patches
-from ..matching.nearest import CROSS_CHECKS, match_features
+from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import stretch_to_uint8
-from ..progress import Monitor
-from ..types import Features, Matches
-from . import Method, param, register_method, validate
+from ..types import Features
+from . import Method, match_with, param, register_method, validate
 
 CITATION = ("Sedaghat & Mohammadi 2019, Rotation invariant local binary pattern descriptor for remote sensing "
             "image matching, JGIT 7(2):223-239 (spec 000); CenSurE: Agrawal et al. 2008, ECCV")
@@ -97,19 +96,6 @@ def rilbp_features(img, params: RilbpMethodParams) -> Features:
     patches = sample_patches(u8, kp.xy, support, desc_params.radius, desc_params.margin,
                              smoothing=params.patch_smoothing)
     return Features(kp, rilbp_descriptors(patches, desc_params), "l2")
-
-
-def match_with(features_fn):
-    """A method's ``match`` from a function building Features from a working image."""
-    def match(target, reference, params, monitor: Monitor) -> Matches:
-        ft = features_fn(target, params)
-        monitor.report(0.45, "keypoints and descriptors")
-        fr = features_fn(reference, params)
-        monitor.report(0.9, "keypoints and descriptors")
-        it, ir, score = match_features(ft, fr, ratio=params.ratio, cross_check=params.cross_check)
-        monitor.report(1.0, "matching")
-        return Matches(ft.keypoints.xy[it], fr.keypoints.xy[ir], score, len(ft), len(fr))
-    return match
 
 
 METHOD = register_method(Method(

@@ -9,12 +9,14 @@ each region before description, as Sedaghat & Mohammadi (2019) describe for thei
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from ..descriptors.cslbp import CslbpParams, cslbp_descriptors
 from ..features.patches import dominant_orientation, sample_patches
 from ..features.sift import sift_descriptors
 from ..types import Features, Keypoints
-from . import Method, register_method
-from .rilbp import CITATION, CensureRegionParams, censure_regions, match_with
+from . import Method, match_with, param, register_method
+from .rilbp import CITATION, CensureRegionParams, censure_regions
 
 
 def oriented(img, params):
@@ -36,14 +38,11 @@ def censure_sift_features(img, params) -> Features:
     return Features(kp, sift_descriptors(u8.astype("uint8"), kp.xy, support, kp.angle), "l2")
 
 
-def _faithful(cls_name):
-    import dataclasses
+@dataclass(frozen=True)
+class CensureBaselineParams(CensureRegionParams):
+    """The spec 000 baselines as compared in the paper: whole-pixel CenSurE positions."""
 
-    from . import param
-
-    return dataclasses.make_dataclass(cls_name, [("subpixel", bool, param(
-        False, "Faithful: whole-pixel CenSurE positions, as in the paper's comparison."))],
-        bases=(CensureRegionParams,), frozen=True)
+    subpixel: bool = param(False, "Faithful: whole-pixel CenSurE positions, as in the paper's comparison.")
 
 
 CSLBP = register_method(Method(
@@ -52,11 +51,11 @@ CSLBP = register_method(Method(
     summary="Standard CS-LBP descriptor (4x4 grid, 256-D) on CenSurE regions turned to a SIFT-style "
             "dominant orientation: the baseline RILBP is compared with.",
     citation="Heikkilä et al. 2009, Pattern Recognition 42(3), doi:10.1016/j.patcog.2008.08.014; " + CITATION,
-    params_type=_faithful("CslbpParams"), match=match_with(cslbp_features), kind="baseline"))
+    params_type=CensureBaselineParams, match=match_with(cslbp_features), kind="baseline"))
 
 CENSURE_SIFT = register_method(Method(
     name="censure-sift",
     title="SIFT descriptor on CenSurE keypoints (spec 000 baseline)",
     summary="OpenCV SIFT descriptors computed at CenSurE regions with a dominant orientation.",
     citation="Lowe 2004, IJCV 60(2); " + CITATION,
-    params_type=_faithful("CensureSiftParams"), match=match_with(censure_sift_features), kind="baseline"))
+    params_type=CensureBaselineParams, match=match_with(censure_sift_features), kind="baseline"))

@@ -24,7 +24,7 @@ import cv2
 import numpy as np
 
 from ..features.rbrief import intensity_centroid_angle, rbrief_descriptors
-from ..features.sift import OPENCV_SIFT_BIAS_PX, keypoints_from_opencv
+from ..features.sift import SiftDetector, sift_keypoints
 from ..matching.nearest import match_features, self_similar
 from ..preprocess.edges import sobel_edge_image
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
@@ -103,16 +103,16 @@ def edge_image(gray: np.ndarray, params: SibrifParams) -> np.ndarray:
 
 def edge_keypoints(edges: np.ndarray, mask: np.ndarray, params: SibrifParams) -> Keypoints:
     """SIFT DoG keypoints of the edge image, in its corner-convention pixels."""
-    sift = cv2.SIFT_create(nfeatures=params.max_keypoints, contrastThreshold=params.contrast_threshold)
+    sift = SiftDetector(n_features=params.max_keypoints, contrast_threshold=params.contrast_threshold)
     if params.detection_scale >= 2.0:
-        return keypoints_from_opencv(sift.detect(edges, mask), OPENCV_SIFT_BIAS_PX)
+        return sift_keypoints(edges, mask, sift)
     # OpenCV always doubles its input first; shrinking it by detection_scale / 2 beforehand starts the
     # pyramid at detection_scale.
     h, w = edges.shape
     f = params.detection_scale / 2.0
     small = cv2.resize(edges, (max(1, int(round(w * f))), max(1, int(round(h * f)))), interpolation=cv2.INTER_AREA)
     small_mask = cv2.resize(mask, (small.shape[1], small.shape[0]), interpolation=cv2.INTER_NEAREST)
-    kp = keypoints_from_opencv(sift.detect(small, small_mask), OPENCV_SIFT_BIAS_PX)
+    kp = sift_keypoints(small, small_mask, sift)
     sx, sy = w / small.shape[1], h / small.shape[0]
     return Keypoints(kp.xy * [sx, sy], kp.size * sx, kp.angle, kp.response)
 

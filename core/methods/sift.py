@@ -8,11 +8,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..features.sift import SiftDetector, sift_features
-from ..matching.nearest import CROSS_CHECKS, match_features
+from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
-from ..progress import Monitor
-from ..types import Matches
-from . import Method, param, register_method, validate
+from . import Method, match_with, param, register_method, validate
 
 
 @dataclass(frozen=True)
@@ -29,18 +27,11 @@ class SiftParams:
         validate(self)
 
 
-def match(target, reference, params: SiftParams, monitor: Monitor) -> Matches:
-    """SIFT on both working images (8-bit percentile stretch), ratio test, cross-check."""
+def sift_image_features(img, params: SiftParams):
+    """OpenCV SIFT on a working image (8-bit percentile stretch)."""
     detector = SiftDetector(n_features=params.n_features, contrast_threshold=params.contrast_threshold,
                             edge_threshold=params.edge_threshold)
-    feats = []
-    for i, img in enumerate((target, reference)):
-        feats.append(sift_features(stretch_to_uint8(img.data, img.valid), detection_mask(img.valid), detector))
-        monitor.report(0.4 * (i + 1), "SIFT keypoints")
-    ft, fr = feats
-    it, ir, score = match_features(ft, fr, ratio=params.ratio, cross_check=params.cross_check)
-    monitor.report(1.0, "matching")
-    return Matches(ft.keypoints.xy[it], fr.keypoints.xy[ir], score, len(ft), len(fr))
+    return sift_features(stretch_to_uint8(img.data, img.valid), detection_mask(img.valid), detector)
 
 
 METHOD = register_method(Method(
@@ -50,6 +41,6 @@ METHOD = register_method(Method(
             "default for same-sensor optical images.",
     citation="Lowe 2004, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94",
     params_type=SiftParams,
-    match=match,
+    match=match_with(sift_image_features, "SIFT keypoints"),
     kind="baseline",
 ))

@@ -6,11 +6,15 @@ import numpy as np
 _SAMPLE = 250_000  # valid pixels (an even stride through the image) used to estimate percentiles
 
 
+def valid_sample(data: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """The valid pixels, or an even stride through them when there are many (for percentiles)."""
+    values = data[valid]
+    return values[:: values.size // _SAMPLE] if values.size > _SAMPLE else values
+
+
 def percentile_range(data: np.ndarray, valid: np.ndarray, low: float = 0.5, high: float = 99.5):
     """Robust value range of the valid pixels (percentiles on a deterministic subsample)."""
-    values = data[valid]
-    if values.size > _SAMPLE:
-        values = values[:: values.size // _SAMPLE]
+    values = valid_sample(data, valid)
     lo, hi = np.percentile(values, [low, high])
     if hi <= lo:
         lo, hi = float(values.min()), float(values.max())

@@ -11,6 +11,8 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
+from .normalize import valid_sample
+
 SAR_UNITS = ("amplitude", "intensity", "db")
 EPS = 1e-3
 
@@ -30,9 +32,7 @@ def normalised_amplitude(data: np.ndarray, valid: np.ndarray, units: str = "ampl
                          percentile: float = 99.0) -> np.ndarray:
     """float32 amplitude / its ``percentile`` over valid pixels, clipped to [EPS, 1]; invalid -> EPS."""
     amp = to_amplitude(data.astype(np.float64), units)
-    values = amp[valid]
-    if values.size > 250_000:
-        values = values[:: values.size // 250_000]
+    values = valid_sample(amp, valid)
     scale = float(np.percentile(values, percentile)) if values.size else 1.0
     out = np.clip(amp / max(scale, 1e-12), EPS, 1.0)
     out[~valid] = EPS
