@@ -139,16 +139,15 @@ def cmd_demo(args) -> int:
 
 
 def cmd_bench(args) -> int:
-    from .evaluation.bench import BenchConfig, run_bench, text_tables
+    from .evaluation.bench import BenchConfig, expand_sweep, run_bench, text_tables
     from .evaluation.families import DEFAULT_FAMILIES
-
-    split = lambda text: tuple(x.strip() for x in text.split(",") if x.strip())  # noqa: E731
-    from .evaluation.bench import expand_sweep
     from .methods import all_methods
 
+    def split(text, sep=","):
+        return tuple(x.strip() for x in text.split(sep) if x.strip())
+
     families = split(args.families) if args.families else DEFAULT_FAMILIES
-    methods = split(args.methods or "") if not args.methods or "[" not in args.methods else tuple(
-        m.strip() for m in args.methods.split(";") if m.strip())
+    methods = split(args.methods or "", ";" if "[" in (args.methods or "") else ",")
     if args.sweep:
         methods = tuple(expand_sweep(methods or tuple(all_methods()), args.sweep))
     config = BenchConfig(methods=methods, families=families,

@@ -272,13 +272,17 @@ def _run_unit(args):
     return next(r for r in all_reproductions() if r.name == name).run_unit(unit, config)
 
 
+def _pool(jobs: int):
+    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
+    return cf.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context(method))
+
+
 def _map(fn, items, config):
     """``fn`` over ``items`` in the order given, in the worker pool when ``config.jobs`` > 1."""
     if config.jobs <= 1 or len(items) <= 1:
         yield from map(fn, items)
         return
-    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
-    with cf.ProcessPoolExecutor(config.jobs, mp_context=multiprocessing.get_context(method)) as pool:
+    with _pool(config.jobs) as pool:
         yield from pool.map(fn, items)
 
 
@@ -293,14 +297,13 @@ def _execute(specs, config):
         for spec in specs:
             yield run_case(spec, config)
         return
-    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
-    with cf.ProcessPoolExecutor(config.jobs, mp_context=multiprocessing.get_context(method)) as pool:
+    with _pool(config.jobs) as pool:
         futures = [pool.submit(run_case, spec, config) for spec in specs]
         for fut in cf.as_completed(futures):
             yield fut.result()
 
 
-def _median(values):
+def median(values):
     v = [x for x in values if x is not None]
     return float(np.median(v)) if v else None
 
@@ -332,12 +335,12 @@ def summarise(rows: List[dict], methods: Sequence[str]) -> Dict[str, Dict[str, d
             out[fam][m] = {
                 "n_cases": len(rs), "n_success": len(ok), "success_rate": len(ok) / len(rs),
                 "hardest_third_success": sum(r["success"] for r in hard_rows) / max(len(hard_rows), 1),
-                "median_rmse_cp": _median([r["rmse_cp"] for r in ok]), "p90_rmse_cp": _p90([r["rmse_cp"] for r in ok]),
-                "median_ncm": _median([r["ncm"] for r in rs]),
-                "median_precision": _median([r["precision"] for r in rs]),
-                "median_time_s": _median([r["time_s"] for r in rs]),
-                "time_ratio_to_sift": 1.0 if m == BASELINE else _median(ratios),
-                "median_peak_rss_mb": _median([r["peak_rss_mb"] for r in rs]),
+                "median_rmse_cp": median([r["rmse_cp"] for r in ok]), "p90_rmse_cp": _p90([r["rmse_cp"] for r in ok]),
+                "median_ncm": median([r["ncm"] for r in rs]),
+                "median_precision": median([r["precision"] for r in rs]),
+                "median_time_s": median([r["time_s"] for r in rs]),
+                "time_ratio_to_sift": 1.0 if m == BASELINE else median(ratios),
+                "median_peak_rss_mb": median([r["peak_rss_mb"] for r in rs]),
             }
     return out
 
@@ -358,27 +361,24 @@ def _cells(method: str, s: dict) -> List[str]:
             num(s["median_peak_rss_mb"], ".0f")]
 
 
+def _aligned(rows) -> List[str]:
+    """Rows of cells as text lines: first column left-aligned, the others right-aligned, a rule under the header."""
+    rows = [[str(c) for c in r] for r in rows]
+    widths = [max(len(r[i]) for r in rows) for i in range(len(rows[0]))]
+    lines = ["  ".join(c.ljust(w) if j == 0 else c.rjust(w) for j, (c, w) in enumerate(zip(r, widths))) for r in rows]
+    return lines[:1] + ["  ".join("-" * w for w in widths)] + lines[1:]
+
+
 def text_tables(report: dict) -> str:
     """The summary as aligned plain-text tables, one per family."""
     lines = []
     for fam, per_method in report["summary"].items():
         n = next(iter(per_method.values()))["n_cases"]
-        rows = [[h for _, h in COLUMNS]] + [_cells(m, s) for m, s in per_method.items()]
-        widths = [max(len(r[i]) for r in rows) for i in range(len(COLUMNS))]
         lines.append(f"\n{fam} ({n} case{'s' if n != 1 else ''})")
-        for i, r in enumerate(rows):
-            lines.append("  ".join(c.ljust(w) if j == 0 else c.rjust(w) for j, (c, w) in enumerate(zip(r, widths))))
-            if i == 0:
-                lines.append("  ".join("-" * w for w in widths))
+        lines.extend(_aligned([[h for _, h in COLUMNS]] + [_cells(m, s) for m, s in per_method.items()]))
     for table in report.get("reproductions", []):
-        rows = [table["columns"]] + [[_fmt_cell(v) for v in r] for r in table["rows"]]
-        widths = [max(len(str(r[i])) for r in rows) for i in range(len(table["columns"]))]
         lines.append(f"\n{table['title']}")
-        for i, r in enumerate(rows):
-            lines.append("  ".join(str(c).ljust(w) if j == 0 else str(c).rjust(w) for j, (c, w) in
-                                   enumerate(zip(r, widths))))
-            if i == 0:
-                lines.append("  ".join("-" * w for w in widths))
+        lines.extend(_aligned([table["columns"]] + [[_fmt_cell(v) for v in r] for r in table["rows"]]))
         if table.get("note"):
             lines.append(f"  ({table['note']})")
     meta = report["meta"]

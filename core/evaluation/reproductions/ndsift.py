@@ -9,19 +9,13 @@ the paper could not report (it has no ground truth).
 """
 from __future__ import annotations
 
-import numpy as np
-
+from ..bench import median
 from . import Reproduction
 
 METHODS = ("bfsift", "gss-sift", "ndss-sift", "ndsift-pc-faithful", "ndsift-pc", "sift")
 PAPER = ("Paper (Table II, 3 real SAR pairs of 300-374 px): BFSIFT RMSE 8.35 / 24.47 / 0.95 px, NDSS+SIFT "
          "1.17 / 2.89 / 0.65 px, proposed 0.81 / 0.94 / 0.49 px; 13-46 s per pair; phase congruency kept 42-77 % "
          "of keypoints.")
-
-
-def _median(values):
-    v = [x for x in values if x is not None]
-    return float(np.median(v)) if v else None
 
 
 def _kp(row, side, key):
@@ -43,11 +37,11 @@ def tables(rows) -> list:
             kp_ref = [(_kp(r, "reference", "after_pc"), _kp(r, "reference", "before_pc")) for r in rs]
             kp_tgt = [(_kp(r, "target", "after_pc"), _kp(r, "target", "before_pc")) for r in rs]
             fmt = lambda pairs: "–" if not pairs or pairs[0][0] is None else "%d/%d" % (  # noqa: E731
-                _median([p[0] for p in pairs]), _median([p[1] for p in pairs]))
-            body.append([name, m, fmt(kp_ref), fmt(kp_tgt), _median([r["n_matches"] for r in rs]),
-                         _median([r["rmse_px"] for r in rs]), _median([r["rms_loo_px"] for r in rs]),
-                         _median([r["rmse_cp"] for r in rs]), f"{sum(r['success'] for r in rs)}/{len(rs)}",
-                         _median([r["time_s"] for r in rs])])
+                median([p[0] for p in pairs]), median([p[1] for p in pairs]))
+            body.append([name, m, fmt(kp_ref), fmt(kp_tgt), median([r["n_matches"] for r in rs]),
+                         median([r["rmse_px"] for r in rs]), median([r["rms_loo_px"] for r in rs]),
+                         median([r["rmse_cp"] for r in rs]), f"{sum(r['success'] for r in rs)}/{len(rs)}",
+                         median([r["time_s"] for r in rs])])
     return [{"title": "spec 002 Table II shape on the speckle family (medians per subset)",
              "columns": ["pairs", "method", "keypoints ref (after/before PC)", "keypoints sensed", "matches",
                          "RMSE px (self)", "RMS_LOO px (self)", "RMSE_cp px (true)", "registered", "time s"],
