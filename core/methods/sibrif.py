@@ -93,7 +93,7 @@ def edge_image(gray: np.ndarray, params: SibrifParams) -> np.ndarray:
     if params.magnitude == "l1":
         mag = cv2.addWeighted(np.abs(gx), 0.5, np.abs(gy), 0.5, 0)
     else:
-        mag = cv2.magnitude(gx, gy) * np.float32(1 / math.sqrt(2))
+        mag = np.hypot(gx, gy) * np.float32(1 / math.sqrt(2))  # cv2.magnitude is not deterministic
     t = np.float32(params.edge_threshold)
     if params.threshold_mode == "soft":
         return cv2.convertScaleAbs(cv2.max(mag - t, 0))  # rounds and saturates at 255
