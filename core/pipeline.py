@@ -22,6 +22,7 @@ from .estimation.framed import CrsFrame, fit_framed
 from .estimation.models import MIN_POINTS, LinearModel, canonical_model, fit_model
 from .estimation.ransac import ransac
 from .io.raster import open_raster, resolve_bands
+from .matching.spectral import triplet_clustering
 from .io.working import TARGET_GEOREF_CHOICES, prepare_working_images
 from .methods import get_method
 from .progress import Monitor
@@ -29,7 +30,7 @@ from .refine import grid_points, refine_points, spread_subset
 from .result import Correspondences, Gcp, RegistrationResult, params_dict
 
 REFINE_CHOICES = ("auto", "on", "off")
-ROBUST_CHOICES = ("ransac", "none")
+ROBUST_CHOICES = ("ransac", "none", "triplets")
 
 
 @dataclass(frozen=True)
@@ -54,8 +55,9 @@ class RegisterOptions:
     min_inliers : int, optional
         Fewest agreeing correspondences accepted as a registration (at least the model minimum + 2);
         None = the method's default.
-    robust : {'ransac', 'none'}, optional
+    robust : {'ransac', 'none', 'triplets'}, optional
         Outlier rejection before the fit; 'none' fits every correspondence (as some papers do);
+        'triplets' clusters the affine transforms of all match triples (spec 003's future work);
         None = the method's default.
     target_georef : {'auto', 'use', 'ignore'}
         Whether the target's own georeferencing is used as a starting point.
@@ -180,7 +182,7 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
                 break
             try:
                 linear, inliers = _robust_linear(r_tgt, r_ref, linear_kind, fit_threshold, options.seed, need,
-                                                 spec.name, tgt_info.path, robust)
+                                                 spec.name, tgt_info.path, "ransac" if robust == "triplets" else robust)
             except InsufficientMatchesError as exc:
                 notes.append(f"refinement pass {i + 1} found no consistent model ({exc}); using the {fallback}")
                 refined = i > 0
@@ -209,16 +211,24 @@ def _robust_linear(tgt_px, ref_px, kind, threshold, seed, need, method, target_p
             f"{need} are needed). The images may not overlap, or differ too much for this method.", n, need)
     if robust == "none":
         return LinearModel.fit(kind, tgt_px, ref_px), np.ones(n, bool)
-    try:
-        model, inliers = ransac(tgt_px, ref_px, kind, threshold_px=threshold, rng=seed)
-    except ValueError:
-        inliers = np.zeros(n, bool)
-        model = None
-    if inliers.sum() < need:
+    if robust == "triplets":
+        affine, inliers = triplet_clustering(tgt_px, ref_px, radius_px=4 * threshold, inlier_px=threshold, seed=seed)
+        model = LinearModel.fit(kind, tgt_px[inliers], ref_px[inliers]) if inliers.sum() >= need else None
+    else:
+        model, inliers = _ransac(tgt_px, ref_px, kind, threshold, seed)
+    if model is None or inliers.sum() < need:
         raise InsufficientMatchesError(
             f"Only {int(inliers.sum())} of {n} correspondences found by '{method}' for '{target_path}' agree "
             f"on one {kind} transform (at least {need} are needed). The images may not overlap, or differ "
             "too much for this method.", int(inliers.sum()), need)
+    return model, inliers
+
+
+def _ransac(tgt_px, ref_px, kind, threshold, seed):
+    try:
+        model, inliers = ransac(tgt_px, ref_px, kind, threshold_px=threshold, rng=seed)
+    except ValueError:
+        return None, np.zeros(len(tgt_px), bool)
     return model, inliers
 
 

@@ -16,6 +16,7 @@ import cv2
 import numpy as np
 from rasterio.windows import Window
 
+from .area.cfog import cfog, ncc_surface, peak_offset
 from .coords import as_xy
 from .estimation.models import LinearModel
 from .io.raster import RasterInfo, open_dataset, read_image
@@ -42,6 +43,9 @@ class RefineParams:
     passes : int
         Refinement passes; each later pass starts from the model fitted on the previous one
         (templates then line up better where the first model was off by a few pixels).
+    similarity : {'ncc', 'cfog'}
+        Correlation of intensities, or of CFOG structural descriptors (for images of different
+        modality, see :mod:`hamta.core.area.cfog`).
     """
 
     template_px: int = 31
@@ -50,10 +54,13 @@ class RefineParams:
     max_points: int = 300
     points: str = "matches"
     passes: int = 1
+    similarity: str = "ncc"
 
     def __post_init__(self):
         if self.points not in ("matches", "grid"):
             raise ValueError(f"refinement points must be 'matches' or 'grid', got {self.points!r}")
+        if self.similarity not in ("ncc", "cfog"):
+            raise ValueError(f"refinement similarity must be 'ncc' or 'cfog', got {self.similarity!r}")
 
 
 def grid_points(model: LinearModel, target: RasterInfo, reference: RasterInfo, params: RefineParams) -> np.ndarray:
@@ -122,7 +129,7 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
     with open_dataset(target) as tds, open_dataset(reference) as rds:
         for i, p in enumerate(pts):
             found = _refine_one(p, inverse, target, target_bands, tds, reference, reference_bands, rds, t, s,
-                                params.min_ncc)
+                                params.min_ncc, params.similarity)
             if found is not None:
                 out_t.append(found[0])
                 out_r.append(found[1])
@@ -135,7 +142,7 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
     return np.array(out_t), np.array(out_r), np.array(out_c)
 
 
-def _refine_one(p, inverse, target, target_bands, tds, reference, reference_bands, rds, t, s, min_ncc):
+def _refine_one(p, inverse, target, target_bands, tds, reference, reference_bands, rds, t, s, min_ncc, similarity):
     """One refined (target px, reference px, ncc), or None when the point cannot be refined."""
     x0, y0 = int(np.floor(p[0])) - t // 2, int(np.floor(p[1])) - t // 2
     if x0 < 0 or y0 < 0 or x0 + t > reference.width or y0 + t > reference.height:
@@ -158,7 +165,11 @@ def _refine_one(p, inverse, target, target_bands, tds, reference, reference_band
     mx = (src[:, 0] - c0 - 0.5).reshape(size, size).astype(np.float32)
     my = (src[:, 1] - r0 - 0.5).reshape(size, size).astype(np.float32)
     warped = cv2.remap(patch, mx, my, cv2.INTER_CUBIC, borderMode=cv2.BORDER_REPLICATE)
-    offset, peak = _ncc_offset(warped, tmpl, s)
+    if similarity == "cfog":
+        surface = ncc_surface(cfog(warped), cfog(tmpl))
+    else:
+        surface = cv2.matchTemplate(warped.astype(np.float32), tmpl.astype(np.float32), cv2.TM_CCOEFF_NORMED)
+    offset, peak = peak_offset(surface, s)
     if offset is None or peak < min_ncc:
         return None
     ref_pt = np.array([x0 + t / 2.0, y0 + t / 2.0])
@@ -172,19 +183,3 @@ def _filled(image: np.ndarray, valid: np.ndarray, min_valid: float = 0.9):
     if not valid.all():
         image = np.where(valid, image, image[valid].mean()).astype(np.float32)
     return image
-
-
-def _ncc_offset(search: np.ndarray, template: np.ndarray, s: int):
-    """Sub-pixel offset (dx, dy) at which ``template`` best matches the centre of ``search``."""
-    res = cv2.matchTemplate(search.astype(np.float32), template.astype(np.float32), cv2.TM_CCOEFF_NORMED)
-    _, peak, _, (u, v) = cv2.minMaxLoc(res)
-    if not (0 < u < res.shape[1] - 1 and 0 < v < res.shape[0] - 1) or not np.isfinite(peak):
-        return None, peak
-    dx = _parabola(res[v, u - 1], res[v, u], res[v, u + 1])
-    dy = _parabola(res[v - 1, u], res[v, u], res[v + 1, u])
-    return np.array([u + dx - s, v + dy - s]), float(peak)
-
-
-def _parabola(a: float, b: float, c: float) -> float:
-    den = a - 2 * b + c
-    return 0.0 if den >= 0 else float(np.clip(0.5 * (a - c) / den, -0.5, 0.5))

@@ -306,5 +306,15 @@
         <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="317"/>
+        <source>Register SAR image onto optical image</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="318"/>
+        <source>Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale (up to 1.5 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method &apos;lines-spectral-faithful&apos; is the thesis&apos;s line-intersection matcher as written (Radon lines, eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register.&lt;br&gt;&lt;br&gt;References: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 </TS>

@@ -7,8 +7,8 @@ from qgis.core import QgsProcessingProvider
 from qgis.PyQt.QtCore import QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
-from .register_algorithm import (RegisterNdsiftAlgorithm, RegisterRilbpAlgorithm, RegisterSibrifAlgorithm,
-                                 RegisterSiftAlgorithm)
+from .register_algorithm import (RegisterNdsiftAlgorithm, RegisterRilbpAlgorithm, RegisterSarOpticalAlgorithm,
+                                 RegisterSibrifAlgorithm, RegisterSiftAlgorithm)
 
 ICON = os.path.join(os.path.dirname(os.path.dirname(__file__)), "icon.svg")
 
@@ -28,7 +28,7 @@ class HamtaProvider(QgsProcessingProvider):
 
     def loadAlgorithms(self):
         for alg in (RegisterSiftAlgorithm(), RegisterRilbpAlgorithm(), RegisterSibrifAlgorithm(),
-                    RegisterNdsiftAlgorithm()):
+                    RegisterNdsiftAlgorithm(), RegisterSarOpticalAlgorithm()):
             self.addAlgorithm(alg)
 
     def supportedOutputRasterLayerExtensions(self):

@@ -309,3 +309,23 @@ class RegisterNdsiftAlgorithm(RegisterAlgorithm):
         "<br><br>Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration "
         "using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters "
         "12(3):562-566, doi:10.1109/LGRS.2014.2351396")
+
+
+class RegisterSarOpticalAlgorithm(RegisterAlgorithm):
+    METHOD = "lines-spectral"
+    ALG_NAME = "registersaroptical"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("RegisterAlgorithm", "Register SAR image onto optical image")
+    HELP = QT_TRANSLATE_NOOP(
+        "RegisterAlgorithm",
+        "Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and "
+        "contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale "
+        "(up to 1.5 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to "
+        "the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen "
+        "transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same "
+        "similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method "
+        "'lines-spectral-faithful' is the thesis's line-intersection matcher as written (Radon lines, eigenvector "
+        "and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register."
+        "<br><br>References: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. "
+        "thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), "
+        "Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on "
+        "Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684")

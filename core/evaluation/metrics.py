@@ -6,18 +6,21 @@ from typing import Optional
 import numpy as np
 
 CORRECT_MATCH_PX = 3.0
+LOOSE_MATCH_PX = 10.0  # "nearly right": for methods whose papers judged matches by eye
 
 
 def judge(case, result=None, error: Optional[BaseException] = None) -> dict:
     """Metrics of one registration of ``case``: the returned mapping's check-point error, the
     method's correct matches, and the self-reported figures. ``result`` is None on failure.
     A method that returned no matches has precision 0."""
-    row = {"success": False, "rmse_cp": None, "max_cp": None, "ncm": 0, "n_matches": 0, "precision": 0.0,
+    row = {"success": False, "rmse_cp": None, "max_cp": None, "ncm": 0, "ncm_loose": 0, "n_matches": 0,
+           "precision": 0.0,
            "rmse_px": None, "rms_loo_px": None, "n_gcps": 0, "error": None}
     corr = result.correspondences if result is not None else getattr(error, "correspondences", None)
     if corr is not None and len(corr):
         err = np.linalg.norm(case.truth(corr.target_px) - corr.reference_px, axis=1)
         row["ncm"] = int((err <= CORRECT_MATCH_PX).sum())
+        row["ncm_loose"] = int((err <= LOOSE_MATCH_PX).sum())
         row["n_matches"] = int(len(corr))
         row["precision"] = row["ncm"] / len(corr)
     if result is None:

@@ -152,4 +152,5 @@ def all_methods() -> Dict[str, Method]:
 
 def _load_builtin() -> None:
     """Import the built-in method modules once (each registers itself on import)."""
-    from . import ndsift_pc, orb, pca_sift, phasecorr, rilbp, rilbp_baselines, sibrif, sift  # noqa: F401
+    from . import (lines_spectral, ndsift_pc, orb, pca_sift, phasecorr, rilbp, rilbp_baselines,  # noqa: F401
+                   sibrif, sift)

@@ -61,9 +61,29 @@ def test_sar_algorithm_registers_a_speckled_pair(provider, shared, tmp_path):
     assert np.sqrt(np.mean(np.sum((mapped - case.truth(case.check_points)) ** 2, axis=1))) < 1.0
 
 
+def test_sar_optical_algorithm_registers_an_inverted_speckled_image(provider, shared, tmp_path):
+    import processing
+
+    from hamta.core.evaluation.families import CaseSpec, build_case
+
+    spec = CaseSpec("multimodal", "landsat_sigmoid-invert", {"source": "landsat", "mapping": "sigmoid-invert"})
+    case = build_case(spec, str(tmp_path), 512, str(shared / "data"))
+    alg = provider.algorithm("registersaroptical")
+    coarse = next(p for p in alg.parameterDefinitions() if p.name() == "P_COARSE")
+    assert coarse.options() == ["search", "lines"]
+    params = dict(TARGET=case.target, REFERENCE=case.reference, OUTPUT=str(tmp_path / "o.tif"),
+                  REPORT=str(tmp_path / "r.json"))
+    res = processing.run("hamta:registersaroptical", params)
+    report = read_report(res["REPORT"])
+    assert report["method"] == "lines-spectral" and res["N_GCPS"] >= 50
+    check = map_points_from_report(res["REPORT"], case.check_points)
+    mapped = np.array([p["reference_px"] for p in check])
+    assert np.sqrt(np.mean(np.sum((mapped - case.truth(case.check_points)) ** 2, axis=1))) < 1.0
+
+
 def test_every_method_algorithm_is_listed(provider):
     ids = {a.name() for a in provider.algorithms()}
-    assert {"registersift", "registerrilbp", "registersibrif", "registerndsift"} <= ids
+    assert {"registersift", "registerrilbp", "registersibrif", "registerndsift", "registersaroptical"} <= ids
     sibrif = provider.algorithm("registersibrif")
     enum = next(p for p in sibrif.parameterDefinitions() if p.name() == "P_MAGNITUDE")
     assert enum.options() == ["l1", "l2"]

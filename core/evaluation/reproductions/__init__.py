@@ -23,8 +23,9 @@ class Reproduction:
 
 
 def all_reproductions():
+    from .lines_spectral import REPRODUCTION as lines_spectral
     from .ndsift import REPRODUCTION as ndsift
     from .rilbp import REPRODUCTION as rilbp
     from .sibrif import REPRODUCTION as sibrif
 
-    return [rilbp, sibrif, ndsift]
+    return [rilbp, sibrif, ndsift, lines_spectral]

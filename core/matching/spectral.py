@@ -1,0 +1,234 @@
+"""Spectral point-pattern matching of line intersections (spec 003, sections 2.8-2.11).
+
+- Eigenvector (modal) matching: Shapiro & Brady 1992, Feature-based correspondence: an
+  eigenvector approach, Image and Vision Computing 10(5):283-288.
+- VSPM, Voronoi-integrated spectral point matching: Sui, Xu, Liu & Hua 2015, IEEE TGRS
+  53(11):6058-6072, as the thesis describes it (Hausdorff distances between Voronoi cells, a
+  proximity matrix, its eigenvectors, a crossing-angle mask).
+- Their fusion, which the thesis leaves unspecified: a score-level sum or a cascade (spec 2.10).
+- Triplet clustering, the thesis's future work: an affine transform from every triple of matches,
+  the densest cluster of those transforms, and the matches it explains.
+
+Points are working pixels of each image; every matcher returns index pairs (i into the first set,
+j into the second) and a score per pair (higher is better).
+"""
+from __future__ import annotations
+
+import itertools
+import math
+from typing import Tuple
+
+import numpy as np
+from scipy.spatial import Voronoi, cKDTree
+
+FUSIONS = ("score", "cascade")
+VSPM_PROXIMITIES = ("printed", "laplacian", "gaussian")
+
+
+def modes(h: np.ndarray, k: int) -> np.ndarray:
+    """The ``k`` eigenvectors of symmetric ``h`` with the largest eigenvalues, as columns, each signed
+    so that its entries sum to a non-negative value (the sum does not depend on point order, so both
+    images choose the same sign)."""
+    w, v = np.linalg.eigh(h)
+    v = v[:, np.argsort(-w, kind="stable")[:k]]
+    return v * np.where(v.sum(axis=0) < 0, -1.0, 1.0)
+
+
+def _squared_distances(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return ((a[:, None, :] - b[None, :, :]) ** 2).sum(axis=2)
+
+
+def gaussian_proximity(xy: np.ndarray, sigma: float) -> np.ndarray:
+    """H_ij = exp(-r_ij / (2 sigma^2)), r_ij the squared distance (eq. 2-68)."""
+    return np.exp(-_squared_distances(xy, xy) / (2.0 * sigma ** 2))
+
+
+def rms_spread(xy: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(np.sum((xy - xy.mean(axis=0)) ** 2, axis=1)))) if len(xy) else 1.0
+
+
+def mutual_best(score: np.ndarray, largest: bool) -> Tuple[np.ndarray, np.ndarray]:
+    """Pairs (i, j) where score[i, j] is the best of its row and of its column (finite only)."""
+    if score.size == 0:
+        return np.zeros(0, int), np.zeros(0, int)
+    s = score if largest else -score
+    j = np.argmax(s, axis=1)
+    i = np.arange(len(s))
+    ok = (np.argmax(s, axis=0)[j] == i) & np.isfinite(s[i, j])
+    return i[ok], j[ok]
+
+
+def eigenvector_distances(xy1: np.ndarray, xy2: np.ndarray, h1: np.ndarray, h2: np.ndarray) -> np.ndarray:
+    """Z_ij = ||F_i - F_j||^2 between the rows of both modal matrices truncated to min(m, n) modes (eq. 2-72)."""
+    k = min(len(xy1), len(xy2))
+    return _squared_distances(modes(h1, k), modes(h2, k))
+
+
+def eigenvector_match(xy1, xy2, sigma_factor: float = 0.5):
+    """Shapiro-Brady: Gaussian proximity with sigma = ``sigma_factor`` x each set's RMS spread, the
+    modal distances Z, mutual minima."""
+    z = eigenvector_distances(xy1, xy2, gaussian_proximity(xy1, sigma_factor * rms_spread(xy1)),
+                              gaussian_proximity(xy2, sigma_factor * rms_spread(xy2)))
+    i, j = mutual_best(z, largest=False)
+    return i, j, -z[i, j]
+
+
+def voronoi_cells(xy: np.ndarray, shape) -> list:
+    """Each point's Voronoi cell clipped to the image rectangle, as an (K, 2) vertex array. The
+    points are mirrored across the four image edges, which bounds every cell exactly by the rectangle."""
+    h, w = shape
+    pts = np.asarray(xy, float)
+    mirrored = [pts, pts * [-1, 1], pts * [-1, 1] + [2 * w, 0], pts * [1, -1], pts * [1, -1] + [0, 2 * h]]
+    vor = Voronoi(np.vstack(mirrored))
+    cells = []
+    for i in range(len(pts)):
+        region = vor.regions[vor.point_region[i]]
+        v = vor.vertices[[r for r in region if r >= 0]]
+        centre = v.mean(axis=0)
+        cells.append(v[np.argsort(np.arctan2(v[:, 1] - centre[1], v[:, 0] - centre[0]))])
+    return cells
+
+
+def _distance_to_convex(points: np.ndarray, poly: np.ndarray) -> np.ndarray:
+    """Distance of each point to the filled convex polygon ``poly`` (0 inside)."""
+    a, b = poly, np.roll(poly, -1, axis=0)
+    ab = b - a
+    ap = points[:, None, :] - a[None]
+    t = np.clip((ap * ab).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-12), 0, 1)
+    edge = np.sqrt(((ap - t[..., None] * ab) ** 2).sum(-1)).min(axis=1)
+    cross = ab[None, :, 0] * ap[..., 1] - ab[None, :, 1] * ap[..., 0]
+    inside = np.all(cross >= -1e-9, axis=1) | np.all(cross <= 1e-9, axis=1)
+    return np.where(inside, 0.0, edge)
+
+
+def cell_hausdorff(cells: list) -> np.ndarray:
+    """Hausdorff distance between every two filled convex cells (eqs. 2-75, 2-76): the directed
+    distance is attained at a vertex of the first cell, so vertex-to-polygon distances are exact."""
+    n = len(cells)
+    d = np.zeros((n, n))
+    for i in range(n):
+        for j in range(n):
+            if i != j:
+                d[i, j] = _distance_to_convex(cells[i], cells[j]).max()
+    return np.maximum(d, d.T)
+
+
+def vspm_proximity(hd: np.ndarray, form: str) -> np.ndarray:
+    """Proximity from within-image cell Hausdorff distances: r_ij = exp(-H_ij / (2 sigma^2)) (eq. 2-74)
+    with 2 sigma^2 = the median distance (sigma is not given), then 'printed' (eq. 2-73 as printed:
+    -r_ij^2 off the diagonal, -sum_k r_ik on it), 'laplacian' (-r_ij, +sum_k r_ik) or 'gaussian' (r)."""
+    off = hd[~np.eye(len(hd), dtype=bool)]
+    scale = float(np.median(off)) if off.size else 1.0
+    r = np.exp(-hd / max(scale, 1e-9))
+    np.fill_diagonal(r, 0.0)
+    if form == "gaussian":
+        return r + np.eye(len(r))
+    if form == "laplacian":
+        return np.diag(r.sum(axis=1)) - r
+    if form == "printed":
+        return np.diag(-r.sum(axis=1)) - r ** 2
+    raise ValueError(f"VSPM proximity must be one of {VSPM_PROXIMITIES}, got {form!r}")
+
+
+def angle_mask(angle1: np.ndarray, angle2: np.ndarray, tolerance_deg: float) -> np.ndarray:
+    """A_ij = 1 when the crossing angles of intersection i and j differ by less than the tolerance (eq. 2-79)."""
+    return np.abs(angle1[:, None] - angle2[None, :]) < tolerance_deg
+
+
+def vspm_similarity(cells1, cells2, proximity: str) -> np.ndarray:
+    """U_k V_k^T: inner products of the rows of both images' truncated eigenvector matrices (eq. 2-80)."""
+    k = min(len(cells1), len(cells2))
+    u = modes(vspm_proximity(cell_hausdorff(cells1), proximity), k)
+    v = modes(vspm_proximity(cell_hausdorff(cells2), proximity), k)
+    return u @ v.T
+
+
+def vspm_match(cells1, cells2, angle1, angle2, tolerance_deg: float = 5.0, proximity: str = "printed"):
+    """VSPM: Z = A o (U V^T) with masked pairs excluded (-inf, as a 0 would not exclude a negative
+    score), mutual maxima."""
+    z = np.where(angle_mask(angle1, angle2, tolerance_deg), vspm_similarity(cells1, cells2, proximity), -np.inf)
+    i, j = mutual_best(z, largest=True)
+    return i, j, z[i, j]
+
+
+def _minmax(a: np.ndarray) -> np.ndarray:
+    lo, hi = float(a.min()), float(a.max())
+    return (a - lo) / (hi - lo) if hi > lo else np.zeros_like(a)
+
+
+def fused_match(xy1, xy2, cells1, cells2, angle1, angle2, *, rule: str = "score", weight: float = 0.5,
+                sigma_factor: float = 0.5, tolerance_deg: float = 5.0, proximity: str = "printed"):
+    """The thesis's "resultant of the two methods" (its rule is not given, spec 2.10).
+
+    'score': S = w (1 - Z_A / max Z_A) + (1 - w) minmax(U V^T), angle-masked, mutual maxima.
+    'cascade': VSPM's Hausdorff proximity matrices as Shapiro-Brady's H, angle-masked, mutual minima.
+    """
+    mask = angle_mask(angle1, angle2, tolerance_deg)
+    if rule == "cascade":
+        h1 = vspm_proximity(cell_hausdorff(cells1), proximity)
+        h2 = vspm_proximity(cell_hausdorff(cells2), proximity)
+        z = np.where(mask, eigenvector_distances(xy1, xy2, h1, h2), np.inf)
+        i, j = mutual_best(z, largest=False)
+        return i, j, -z[i, j]
+    if rule != "score":
+        raise ValueError(f"fusion rule must be one of {FUSIONS}, got {rule!r}")
+    za = eigenvector_distances(xy1, xy2, gaussian_proximity(xy1, sigma_factor * rms_spread(xy1)),
+                               gaussian_proximity(xy2, sigma_factor * rms_spread(xy2)))
+    sa = 1.0 - za / max(float(za.max()), 1e-12)
+    sb = _minmax(vspm_similarity(cells1, cells2, proximity))
+    s = np.where(mask, weight * sa + (1.0 - weight) * sb, -np.inf)
+    i, j = mutual_best(s, largest=True)
+    return i, j, s[i, j]
+
+
+def _affine_from(src: np.ndarray, dst: np.ndarray):
+    """Exact affines (T, 2, 3) of T point triples (T, 3, 2) -> (T, 3, 2), with a well-conditioned flag."""
+    a = np.concatenate([src, np.ones(src.shape[:2] + (1,))], axis=2)
+    det = np.linalg.det(a)
+    ok = np.abs(det) > 1e-6 * np.maximum(np.abs(src).max(axis=(1, 2)) ** 2, 1.0)
+    m = np.zeros((len(src), 2, 3))
+    if ok.any():
+        m[ok] = np.swapaxes(np.linalg.solve(a[ok], dst[ok]), 1, 2)
+    return m, ok
+
+
+def triplet_clustering(src, dst, *, radius_px: float, inlier_px: float, min_area_px2: float = 100.0,
+                       scale_range: Tuple[float, float] = (0.2, 5.0), max_triplets: int = 5000, seed: int = 0):
+    """The thesis's future work: an affine from every triple of matches (src -> dst), the transform
+    with the most others within ``radius_px`` (compared by where they send three anchor points spread
+    over the source points), the mean of its cluster, and the matches it maps within ``inlier_px``.
+
+    Triples whose triangles are smaller than ``min_area_px2`` in either image, or whose scale is
+    outside ``scale_range``, are skipped. Returns (2 x 3 matrix or None, inlier mask).
+    """
+    src, dst = np.asarray(src, float), np.asarray(dst, float)
+    n = len(src)
+    none = (None, np.zeros(n, bool))
+    if n < 3:
+        return none
+    if math.comb(n, 3) <= max_triplets:
+        tri = np.array(list(itertools.combinations(range(n), 3)), int)
+    else:
+        rng = np.random.default_rng(seed)
+        tri = np.array([rng.choice(n, 3, replace=False) for _ in range(max_triplets)], int)
+
+    def area(p):
+        return 0.5 * np.abs((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
+                            - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1]))
+    s3, d3 = src[tri], dst[tri]
+    keep = (area(s3) >= min_area_px2) & (area(d3) >= min_area_px2)
+    m, ok = _affine_from(s3[keep], d3[keep])
+    det = np.abs(m[:, 0, 0] * m[:, 1, 1] - m[:, 0, 1] * m[:, 1, 0])
+    ok &= (det >= scale_range[0] ** 2) & (det <= scale_range[1] ** 2)
+    m = m[ok]
+    if len(m) == 0:
+        return none
+    lo, hi = src.min(axis=0), src.max(axis=0)
+    anchors = np.array([[lo[0], lo[1], 1.0], [hi[0], lo[1], 1.0], [lo[0], hi[1], 1.0]])
+    code = np.einsum("tij,aj->tai", m, anchors).reshape(len(m), 6)
+    near = cKDTree(code).query_ball_point(code, radius_px, p=np.inf, return_length=True)
+    best = int(np.argmax(near))
+    member = np.abs(code - code[best]).max(axis=1) <= radius_px
+    mean = m[member].mean(axis=0)
+    err = np.linalg.norm(src @ mean[:, :2].T + mean[:, 2] - dst, axis=1)
+    return mean, err <= inlier_px
