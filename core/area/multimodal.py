@@ -13,7 +13,7 @@ images passed in.
 from __future__ import annotations
 
 import math
-from typing import List, Tuple
+from typing import Callable, List, Optional, Tuple
 
 import cv2
 import numpy as np
@@ -54,25 +54,33 @@ def warp(image: np.ndarray, valid: np.ndarray, affine: np.ndarray, shape) -> Tup
     return out, ok
 
 
-def _centred(desc: np.ndarray, valid: np.ndarray) -> np.ndarray:
-    """Channels minus their mean over valid pixels, zero elsewhere: zero padding is then neutral."""
+def _centred(desc: np.ndarray, valid: np.ndarray, local_sigma: float = 0.0) -> np.ndarray:
+    """Channels minus their mean over valid pixels (a Gaussian-weighted local mean when ``local_sigma``
+    > 0), zero elsewhere: zero padding is then neutral, and with a local mean regional orientation
+    statistics (texture, compression blocks) stop correlating regardless of position."""
     if not valid.any():
         return np.zeros_like(desc)
-    mean = desc[:, valid].mean(axis=1)
-    return ((desc - mean[:, None, None]) * valid[None]).astype(np.float32)
+    m = valid.astype(np.float32)
+    if local_sigma > 0:
+        weight = np.maximum(cv2.GaussianBlur(m, (0, 0), local_sigma), 1e-6)
+        mean = np.stack([cv2.GaussianBlur(c * m, (0, 0), local_sigma) / weight for c in desc])
+    else:
+        mean = desc[:, valid].mean(axis=1)[:, None, None]
+    return ((desc - mean) * m[None]).astype(np.float32)
 
 
 class _Scorer:
     """Masked NCC of a fixed reference descriptor against warped targets, for shifts up to ``pad`` px."""
 
-    def __init__(self, reference, r_valid, pad: int, bins: int, sigma: float, min_overlap: float):
+    def __init__(self, reference, r_valid, pad: int, bins: int, sigma: float, min_overlap: float,
+                 local_sigma: float = 0.0):
         h, w = reference.shape
         self.shape, self.pad = (h + 2 * pad, w + 2 * pad), pad
         self.n = (sfft.next_fast_len(self.shape[0] + pad), sfft.next_fast_len(self.shape[1] + pad))
-        self.bins, self.sigma = bins, sigma
+        self.bins, self.sigma, self.local_sigma = bins, sigma, local_sigma
         self.origin = np.array([[1, 0, pad], [0, 1, pad]], float)
         ref, ok = warp(reference, r_valid, self.origin, self.shape)
-        d = _centred(cfog(ref, bins, sigma, valid=ok), ok)
+        d = _centred(cfog(ref, bins, sigma, valid=ok), ok, local_sigma)
         self.fr = sfft.rfft2(d, self.n, axes=(1, 2))
         self.fe = sfft.rfft2((d ** 2).sum(axis=0), self.n)
         self.fm = sfft.rfft2(ok.astype(np.float32), self.n)
@@ -87,7 +95,7 @@ class _Scorer:
         img, ok = warp(target, t_valid, full[:2], self.shape)
         if ok.sum() < self.min_count:
             return -np.inf, -1.0, affine
-        d = _centred(cfog(img, self.bins, self.sigma, valid=ok), ok)
+        d = _centred(cfog(img, self.bins, self.sigma, valid=ok), ok, self.local_sigma)
         ft = np.conj(sfft.rfft2(d, self.n, axes=(1, 2)))
         fmt = np.conj(sfft.rfft2(ok.astype(np.float32), self.n))
         num = sfft.irfft2((self.fr * ft).sum(axis=0), self.n)
@@ -125,7 +133,8 @@ def _rescaled(affine, s_src, s_dst):
 def search_similarity(target, t_valid, reference, r_valid, *, max_rotation_deg: float = 30.0,
                       max_scale: float = 1.5, coarse_px: int = 96, rotation_step_deg: float = 5.0,
                       scale_step: float = 1.1, max_offset: float = 0.5, keep: int = 5, bins: int = 9,
-                      min_overlap: float = 0.2) -> Tuple[List[dict], List[dict]]:
+                      min_overlap: float = 0.2, local_sigma: float = 3.0,
+                      progress: Optional[Callable[[float], None]] = None) -> Tuple[List[dict], List[dict]]:
     """Rotation, scale and shift of ``target`` onto ``reference``, found by exhaustive search.
 
     Level 1: both images decimated by one factor so that the reference's longest side is
@@ -133,7 +142,9 @@ def search_similarity(target, t_valid, reference, r_valid, *, max_rotation_deg: 
     scale within [1/max_scale, max_scale] (ratio ``scale_step``), each with every shift of up to
     ``max_offset`` x the reference size. Level 2: the ``keep`` best at twice the resolution with
     half steps and a few pixels of shift. Candidates and shifts are ranked by significance (see
-    ``_Scorer.best``).
+    ``_Scorer.best``). Descriptors are compared after removing their local mean over
+    ``local_sigma`` level-1 px (0: the global mean), so that only the positions of structures count.
+    ``progress(fraction)`` is called after each trial (and may raise to cancel).
 
     Returns
     -------
@@ -152,19 +163,25 @@ def search_similarity(target, t_valid, reference, r_valid, *, max_rotation_deg: 
         ct, cr = np.array(tgt.shape[::-1]) / 2.0, np.array(ref.shape[::-1]) / 2.0
         back = (np.linalg.inv(st), np.linalg.inv(sr))
         if level == 0:
-            scorer = _Scorer(ref, rok, int(math.ceil(max_offset * max(ref.shape))), bins, 0.8, min_overlap)
+            scorer = _Scorer(ref, rok, int(math.ceil(max_offset * max(ref.shape))), bins, 0.8, min_overlap,
+                             local_sigma)
             top = max_rotation_deg - (1e-9 if max_rotation_deg >= 180 else -1e-9)  # -180 and 180 are one
             rot = np.arange(-max_rotation_deg, top, rotation_step_deg) if max_rotation_deg > 0 else np.zeros(1)
             n = int(math.ceil(math.log(max_scale) / math.log(scale_step))) if max_scale > 1 else 0
-            for a, s in [(a, scale_step ** k) for k in range(-n, n + 1) for a in rot]:
+            grid = [(a, scale_step ** k) for k in range(-n, n + 1) for a in rot]
+            for i, (a, s) in enumerate(grid):
+                if progress is not None:
+                    progress(0.8 * i / len(grid))
                 z, ncc, shifted = scorer.best(tgt, tok, similarity(a, s, ct, cr))
                 tried.append({"rotation_deg": float(a), "scale": float(s), "ncc": ncc, "z": z,
                               "affine": _rescaled(shifted, *back)})
             seeds = sorted(tried, key=lambda d: -d["z"])[:keep]
             continue
-        scorer = _Scorer(ref, rok, 4, bins, 0.8, min_overlap)
+        scorer = _Scorer(ref, rok, 4, bins, 0.8, min_overlap, 2 * local_sigma)
         da, ds = rotation_step_deg / 2.0, math.sqrt(scale_step)
-        for seed in seeds:
+        for i, seed in enumerate(seeds):
+            if progress is not None:
+                progress(0.8 + 0.2 * i / len(seeds))
             centre = apply(_rescaled(seed["affine"], st, sr), ct[None])[0]
             trials = []
             for a in (seed["rotation_deg"] - da, seed["rotation_deg"], seed["rotation_deg"] + da):
@@ -193,12 +210,14 @@ def grid(shape, valid, half: int, limit: int) -> np.ndarray:
 
 
 def dense_matches(target, t_valid, reference, r_valid, affine, *, template: int = 64, search: int = 8,
-                  limit: int = 400, min_ncc: float = 0.2, bins: int = 9, sigma: float = 0.8):
+                  limit: int = 400, min_ncc: float = 0.2, bins: int = 9, sigma: float = 0.8,
+                  reference_descriptors: Optional[np.ndarray] = None):
     """Correspondences on a reference grid: each CFOG template found in the target warped by
-    ``affine`` within +-``search`` px. Returns (target px, reference px, NCC peak), weak peaks dropped."""
+    ``affine`` within +-``search`` px. Returns (target px, reference px, NCC peak), weak peaks dropped.
+    ``reference_descriptors`` (``cfog(reference, bins, sigma, valid=r_valid)``) saves recomputing them."""
     warped, wok = warp(target, t_valid, affine, reference.shape)
     dt = cfog(warped, bins, sigma, valid=wok)
-    dr = cfog(reference, bins, sigma, valid=r_valid)
+    dr = cfog(reference, bins, sigma, valid=r_valid) if reference_descriptors is None else reference_descriptors
     half = template // 2
     pts = grid(reference.shape, r_valid & wok, half + search, limit)
     inv = invert(affine)
