@@ -319,7 +319,7 @@ class RegisterSarOpticalAlgorithm(RegisterAlgorithm):
         "RegisterAlgorithm",
         "Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and "
         "contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale "
-        "(up to 1.5 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to "
+        "(up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to "
         "the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen "
         "transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same "
         "similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method "

@@ -28,14 +28,25 @@ def cfog(image: np.ndarray, bins: int = 9, sigma: float = 0.8, presmooth: float 
         img = cv2.GaussianBlur(img, (0, 0), presmooth)
     gx = cv2.Sobel(img, cv2.CV_32F, 1, 0, ksize=1)
     gy = cv2.Sobel(img, cv2.CV_32F, 0, 1, ksize=1)
-    angles = np.arange(bins) * np.pi / bins
-    ch = np.stack([cv2.GaussianBlur(np.abs(np.cos(a) * gx + np.sin(a) * gy), (0, 0), sigma) for a in angles])
-    ch = 0.5 * ch + 0.25 * (np.roll(ch, 1, axis=0) + np.roll(ch, -1, axis=0))
-    ch /= np.sqrt((ch ** 2).sum(axis=0)) + np.float32(1e-6 + 1e-3 * float(np.abs(ch).mean()))
+    raw = np.empty((bins,) + img.shape, np.float32)
+    for k in range(bins):
+        a = k * np.pi / bins
+        oriented = np.abs(np.float32(np.cos(a)) * gx + np.float32(np.sin(a)) * gy)
+        cv2.GaussianBlur(oriented, (0, 0), sigma, dst=raw[k])
+    del gx, gy
+    ch = 0.5 * raw
+    ch[1:] += 0.25 * raw[:-1]
+    ch[0] += 0.25 * raw[-1]
+    ch[:-1] += 0.25 * raw[1:]
+    ch[-1] += 0.25 * raw[0]
+    del raw
+    norm = np.sqrt(np.einsum("kij,kij->ij", ch, ch))
+    norm += np.float32(1e-6 + 1e-3 * float(ch.mean()))
+    ch /= norm[None]
     if valid is not None:  # the edge between valid and filled pixels is not image structure
         r = 2 * int(np.ceil(2 * sigma + presmooth)) + 3
         ch *= cv2.erode(valid.astype(np.uint8), np.ones((r, r), np.uint8), borderType=cv2.BORDER_REPLICATE)[None]
-    return ch.astype(np.float32)
+    return ch
 
 
 def ncc_surface(search: np.ndarray, template: np.ndarray) -> np.ndarray:

@@ -84,8 +84,8 @@ class _Scorer:
         self.fr = sfft.rfft2(d, self.n, axes=(1, 2))
         self.fe = sfft.rfft2((d ** 2).sum(axis=0), self.n)
         self.fm = sfft.rfft2(ok.astype(np.float32), self.n)
-        self.area = float(ok.sum())
-        self.min_count = min_overlap * self.area
+        self.area = max(float(ok.sum()), 1.0)
+        self.min_count = max(min_overlap * self.area, 1.0)
 
     def best(self, target, t_valid, affine) -> Tuple[float, float, np.ndarray]:
         """(significance, NCC, affine with its shift) at the most significant shift of the target
@@ -144,7 +144,7 @@ def search_similarity(target, t_valid, reference, r_valid, *, max_rotation_deg: 
     half steps and a few pixels of shift. Candidates and shifts are ranked by significance (see
     ``_Scorer.best``). Descriptors are compared after removing their local mean over
     ``local_sigma`` level-1 px (0: the global mean), so that only the positions of structures count.
-    ``progress(fraction)`` is called after each trial (and may raise to cancel).
+    ``progress(fraction)`` is called before each trial (and may raise to cancel).
 
     Returns
     -------
@@ -175,7 +175,8 @@ def search_similarity(target, t_valid, reference, r_valid, *, max_rotation_deg: 
                 z, ncc, shifted = scorer.best(tgt, tok, similarity(a, s, ct, cr))
                 tried.append({"rotation_deg": float(a), "scale": float(s), "ncc": ncc, "z": z,
                               "affine": _rescaled(shifted, *back)})
-            seeds = sorted(tried, key=lambda d: -d["z"])[:keep]
+            seeds = _distinct(sorted(tried, key=lambda d: -d["z"]), keep, rotation_step_deg, scale_step,
+                              4.0 / fl, np.array(target.shape[::-1]) / 2.0)
             continue
         scorer = _Scorer(ref, rok, 4, bins, 0.8, min_overlap, 2 * local_sigma)
         da, ds = rotation_step_deg / 2.0, math.sqrt(scale_step)
@@ -191,6 +192,22 @@ def search_similarity(target, t_valid, reference, r_valid, *, max_rotation_deg: 
                                    "affine": _rescaled(shifted, *back)})
             out.append(max(trials, key=lambda d: d["z"]))
     return sorted(out, key=lambda d: -d["z"]), [{k: v for k, v in d.items() if k != "affine"} for d in tried]
+
+
+def _distinct(ranked: List[dict], keep: int, rotation_step: float, scale_step: float, shift_px: float,
+              centre) -> List[dict]:
+    """The first ``keep`` trials of ``ranked`` that are not neighbours of a better one: within one
+    rotation step, one scale step and ``shift_px`` of where they send the target's ``centre``."""
+    kept = []
+    for d in ranked:
+        at = apply(d["affine"], np.asarray(centre, float)[None])[0]
+        if not any(abs(d["rotation_deg"] - k["rotation_deg"]) <= rotation_step + 1e-9
+                   and abs(math.log(d["scale"] / k["scale"])) <= math.log(scale_step) + 1e-9
+                   and np.linalg.norm(at - k["_at"]) <= shift_px for k in kept):
+            kept.append(dict(d, _at=at))
+        if len(kept) == keep:
+            break
+    return [{k: v for k, v in d.items() if k != "_at"} for d in kept]
 
 
 def grid(shape, valid, half: int, limit: int) -> np.ndarray:

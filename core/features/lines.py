@@ -44,12 +44,16 @@ class Intersections:
         return len(self.xy)
 
 
+def ggs_radius(alpha: float, beta: float, sigma_x: float) -> int:
+    """Half-size of the GGS windows: 3 sigma_x along the edge, the Gamma profile's tail across it."""
+    return int(math.ceil(max(3.0 * sigma_x, alpha * beta + 4.0 * math.sqrt(alpha) * beta)))
+
+
 def ggs_kernels(alpha: float, beta: float, sigma_x: float, orientations: int):
     """Per orientation theta_p = p pi / P the pair (W_U, W_L) of eqs. 2-29 to 2-32, sampled on
-    pixel offsets, truncated where the Gamma profile has lost its tail and renormalised to sum 1,
-    plus the unit normal (dx, dy) of the edge that orientation detects."""
-    tail = alpha * beta + 4.0 * math.sqrt(alpha) * beta
-    r = int(math.ceil(max(3.0 * sigma_x, tail)))
+    pixel offsets, truncated at :func:`ggs_radius` and renormalised to sum 1, plus the unit normal
+    (dx, dy) of the edge that orientation detects."""
+    r = ggs_radius(alpha, beta, sigma_x)
     dy, dx = np.mgrid[-r:r + 1, -r:r + 1].astype(np.float64)
     log_norm = -0.5 * math.log(2 * math.pi) - math.log(sigma_x) - gammaln(alpha) - alpha * math.log(beta)
     out = []
@@ -120,8 +124,9 @@ def remove_small(binary: np.ndarray, min_pixels: int) -> np.ndarray:
 
 
 def thin(binary: np.ndarray) -> np.ndarray:
-    """Zhang-Suen thinning repeated until nothing changes (Zhang & Suen 1984, CACM 27(3):236-239);
-    the one-pixel-wide skeleton MATLAB's ``bwmorph(BW, 'thin', Inf)`` also produces."""
+    """Zhang-Suen thinning repeated until nothing changes (Zhang & Suen 1984, CACM 27(3):236-239): a
+    one-pixel-wide skeleton like that of MATLAB's ``bwmorph(BW, 'thin', Inf)``, which uses the
+    related Lam-Lee-Suen rules."""
     img = np.pad(binary.astype(np.uint8), 1)
     while True:
         changed = False
@@ -145,9 +150,10 @@ def thin(binary: np.ndarray) -> np.ndarray:
 def radon_lines(edges: np.ndarray, peaks: int = 40, theta_step_deg: float = 1.0, min_votes: int = 15) -> Lines:
     """The ``peaks`` strongest local maxima (3 x 3, with ``min_votes`` or more) of the Radon
     transform of a binary edge map: for theta in [0, 180) and rho in 1 px bins, the number of edge
-    pixel centres on x cos(theta) + y sin(theta) = rho about the image centre (eq. 2-63)."""
+    pixel centres on x cos(theta) + y sin(theta) = rho about the centre of the middle pixel (so that
+    rows and columns of pixel centres fall exactly on bins; eq. 2-63)."""
     h, w = edges.shape
-    centre = (w / 2.0, h / 2.0)
+    centre = (w // 2 + 0.5, h // 2 + 0.5)
     ys, xs = np.nonzero(edges)
     theta = np.deg2rad(np.arange(0.0, 180.0, theta_step_deg))
     if len(xs) == 0:

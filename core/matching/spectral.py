@@ -25,13 +25,21 @@ FUSIONS = ("score", "cascade")
 VSPM_PROXIMITIES = ("printed", "laplacian", "gaussian")
 
 
-def modes(h: np.ndarray, k: int) -> np.ndarray:
-    """The ``k`` eigenvectors of symmetric ``h`` with the largest eigenvalues, as columns, each signed
-    so that its entries sum to a non-negative value (the sum does not depend on point order, so both
-    images choose the same sign)."""
+def modes(h: np.ndarray, k: int, largest: bool = True) -> np.ndarray:
+    """The ``k`` eigenvectors of symmetric ``h`` with the largest (or smallest) eigenvalues, as columns."""
     w, v = np.linalg.eigh(h)
-    v = v[:, np.argsort(-w, kind="stable")[:k]]
-    return v * np.where(v.sum(axis=0) < 0, -1.0, 1.0)
+    order = np.argsort(-w if largest else w, kind="stable")
+    return v[:, order[:k]]
+
+
+def align_signs(u: np.ndarray, v: np.ndarray, quantiles: int = 21) -> np.ndarray:
+    """``v`` with each column's sign chosen so that the distribution of its entries best matches the
+    same column of ``u`` (compared by quantiles, which do not depend on point order or count)."""
+    q = np.linspace(0.0, 1.0, quantiles)
+    qu, qv = np.quantile(u, q, axis=0), np.quantile(v, q, axis=0)
+    qn = np.quantile(-v, q, axis=0)
+    flip = np.abs(qu - qn).sum(axis=0) < np.abs(qu - qv).sum(axis=0)
+    return v * np.where(flip, -1.0, 1.0)
 
 
 def _squared_distances(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -59,9 +67,11 @@ def mutual_best(score: np.ndarray, largest: bool) -> Tuple[np.ndarray, np.ndarra
 
 
 def eigenvector_distances(xy1: np.ndarray, xy2: np.ndarray, h1: np.ndarray, h2: np.ndarray) -> np.ndarray:
-    """Z_ij = ||F_i - F_j||^2 between the rows of both modal matrices truncated to min(m, n) modes (eq. 2-72)."""
+    """Z_ij = ||F_i - F_j||^2 between the rows of both modal matrices truncated to min(m, n) modes,
+    the second's signs aligned to the first's (eq. 2-72)."""
     k = min(len(xy1), len(xy2))
-    return _squared_distances(modes(h1, k), modes(h2, k))
+    u = modes(h1, k)
+    return _squared_distances(u, align_signs(u, modes(h2, k)))
 
 
 def eigenvector_match(xy1, xy2, sigma_factor: float = 0.5):
@@ -89,27 +99,25 @@ def voronoi_cells(xy: np.ndarray, shape) -> list:
     return cells
 
 
-def _distance_to_convex(points: np.ndarray, poly: np.ndarray) -> np.ndarray:
-    """Distance of each point to the filled convex polygon ``poly`` (0 inside)."""
-    a, b = poly, np.roll(poly, -1, axis=0)
-    ab = b - a
-    ap = points[:, None, :] - a[None]
-    t = np.clip((ap * ab).sum(-1) / np.maximum((ab * ab).sum(-1), 1e-12), 0, 1)
-    edge = np.sqrt(((ap - t[..., None] * ab) ** 2).sum(-1)).min(axis=1)
-    cross = ab[None, :, 0] * ap[..., 1] - ab[None, :, 1] * ap[..., 0]
-    inside = np.all(cross >= -1e-9, axis=1) | np.all(cross <= 1e-9, axis=1)
-    return np.where(inside, 0.0, edge)
-
-
 def cell_hausdorff(cells: list) -> np.ndarray:
     """Hausdorff distance between every two filled convex cells (eqs. 2-75, 2-76): the directed
     distance is attained at a vertex of the first cell, so vertex-to-polygon distances are exact."""
     n = len(cells)
+    if n == 0:
+        return np.zeros((0, 0))
+    size = max(len(c) for c in cells)
+    poly = np.stack([np.vstack([c, np.repeat(c[-1:], size - len(c), axis=0)]) for c in cells])  # (n, V, 2)
+    a, ab = poly, np.roll(poly, -1, axis=1) - poly
+    ab2 = np.maximum((ab ** 2).sum(-1), 1e-12)
     d = np.zeros((n, n))
-    for i in range(n):
-        for j in range(n):
-            if i != j:
-                d[i, j] = _distance_to_convex(cells[i], cells[j]).max()
+    for i, pts in enumerate(cells):
+        ap = pts[:, None, None, :] - a[None]                                  # (Vi, n, V, 2)
+        t = np.clip((ap * ab[None]).sum(-1) / ab2[None], 0, 1)
+        edge = np.sqrt(((ap - t[..., None] * ab[None]) ** 2).sum(-1)).min(axis=2)   # (Vi, n)
+        cross = ab[None, ..., 0] * ap[..., 1] - ab[None, ..., 1] * ap[..., 0]
+        inside = np.all(cross >= -1e-9, axis=2) | np.all(cross <= 1e-9, axis=2)
+        d[i] = np.where(inside, 0.0, edge).max(axis=0)
+    np.fill_diagonal(d, 0.0)
     return np.maximum(d, d.T)
 
 
@@ -136,11 +144,17 @@ def angle_mask(angle1: np.ndarray, angle2: np.ndarray, tolerance_deg: float) -> 
 
 
 def vspm_similarity(cells1, cells2, proximity: str) -> np.ndarray:
-    """U_k V_k^T: inner products of the rows of both images' truncated eigenvector matrices (eq. 2-80)."""
+    """U_k V_k^T: inner products of the rows of both images' truncated eigenvector matrices (eq. 2-80).
+    For the Laplacian form the informative modes are those of the smallest eigenvalues after the
+    constant one; the other forms take the largest, as Shapiro and Brady do."""
     k = min(len(cells1), len(cells2))
-    u = modes(vspm_proximity(cell_hausdorff(cells1), proximity), k)
-    v = modes(vspm_proximity(cell_hausdorff(cells2), proximity), k)
-    return u @ v.T
+    h1 = vspm_proximity(cell_hausdorff(cells1), proximity)
+    h2 = vspm_proximity(cell_hausdorff(cells2), proximity)
+    if proximity == "laplacian":
+        u, v = modes(h1, k, largest=False)[:, 1:], modes(h2, k, largest=False)[:, 1:]
+    else:
+        u, v = modes(h1, k), modes(h2, k)
+    return u @ align_signs(u, v).T
 
 
 def vspm_match(cells1, cells2, angle1, angle2, tolerance_deg: float = 5.0, proximity: str = "printed"):
@@ -193,7 +207,7 @@ def _affine_from(src: np.ndarray, dst: np.ndarray):
 
 
 def triplet_clustering(src, dst, *, radius_px: float, inlier_px: float, min_area_px2: float = 100.0,
-                       scale_range: Tuple[float, float] = (0.2, 5.0), max_triplets: int = 5000, seed: int = 0):
+                       scale_range: Tuple[float, float] = (0.01, 100.0), max_triplets: int = 5000, seed: int = 0):
     """The thesis's future work: an affine from every triple of matches (src -> dst), the transform
     with the most others within ``radius_px`` (compared by where they send three anchor points spread
     over the source points), the mean of its cluster, and the matches it maps within ``inlier_px``.

@@ -24,6 +24,7 @@ import math
 import time
 from dataclasses import dataclass
 
+import cv2
 import numpy as np
 
 from ..area import multimodal
@@ -104,7 +105,9 @@ class ProductParams(LinesParams):
                                   "thesis's 5-8 matches cannot) or the thesis's lines.", choices=("search", "lines"))
     max_rotation_deg: float = param(30.0, "Rotations searched, +- degrees (georeferenced targets arrive "
                                           "north-up, so rotation is small).", minimum=0.0, maximum=180.0)
-    max_scale: float = param(1.5, "Scales searched, 1/max_scale .. max_scale.", minimum=1.0, maximum=4.0)
+    max_scale: float = param(2.0, "Scales searched, 1/max_scale .. max_scale (2 registers the scale family's 0.5-2, "
+                                  "10/10 against 6/10 for 1.5, for 17 % more time on a 1000 px pair).",
+                             minimum=1.0, maximum=4.0)
     coarse_px: int = param(96, "Longest reference side at the first search level, px.", minimum=32, maximum=512)
     coarse_local_sigma: float = param(3.0, "The search compares descriptors minus their local mean over this many "
                                            "first-level px: with the global mean (0) regional orientation statistics "
@@ -132,7 +135,9 @@ def line_features(image: np.ndarray, valid: np.ndarray, params: LinesParams, inf
     """Edges, lines and intersections of one working image (spec 003 sections 2.3-2.7)."""
     strength, arg, normals = ln.ggs_strength(image, params.ggs_alpha, params.ggs_beta, params.ggs_sigma_x,
                                              params.orientations)
-    strength[~valid] = 0.0
+    side = 2 * ln.ggs_radius(params.ggs_alpha, params.ggs_beta, params.ggs_sigma_x) + 1
+    inner = cv2.erode(valid.astype(np.uint8), np.ones((side, side), np.uint8), borderType=cv2.BORDER_REPLICATE)
+    strength[inner == 0] = 0.0  # windows reaching into invalid pixels see the footprint's border, not an edge
     edges = ln.hysteresis(ln.non_maximum_suppression(strength, arg, normals), params.low, params.high)
     edges = ln.thin(ln.remove_small(edges, params.min_component_px))
     side = min(image.shape)

@@ -18,9 +18,7 @@ PAPER = {"lines-eigen": "Data 1: 2/7 (28 %), Data 2: 2/4 (50 %)",
 
 
 def _subset(row) -> str:
-    if row["family"] == "pairs":
-        return f"real pair {row['case']}"
-    return "multimodal proxy (8 cases)"
+    return f"real pair {row['case']}" if row["family"] == "pairs" else "multimodal proxy"
 
 
 def _share(k: int, n: int) -> str:
@@ -38,7 +36,8 @@ def tables(rows) -> list:
             matched = sum(r["n_matches"] for r in rs)
             correct = sum(r["ncm"] for r in rs)
             loose = sum(r.get("ncm_loose", 0) for r in rs)
-            body.append([subset, m, matched, _share(correct, matched), _share(loose, matched),
+            label = subset if subset.startswith("real") else f"{subset} ({len(rs)} cases)"
+            body.append([label, m, matched, _share(correct, matched), _share(loose, matched),
                          f"{sum(r['success'] for r in rs)}/{len(rs)}", PAPER.get(m.split("[")[0], "–")
                          if "[" not in m else "– (fusion rule not given)"])
     return [{"title": "spec 003 table shape: matched pairs and correct matches per matcher (summed over cases)",
