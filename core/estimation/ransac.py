@@ -72,9 +72,10 @@ _MINIMAL = {"similarity": _minimal_similarity, "affine": _minimal_affine, "proje
 def _squared_errors(m: np.ndarray, src: np.ndarray, dst: np.ndarray) -> np.ndarray:
     """(K, N) squared transfer errors of K hypotheses on N points."""
     w = np.einsum("kj,nj->kn", m[:, 2, :2], src) + m[:, 2, 2][:, None]
-    px = (np.einsum("kj,nj->kn", m[:, 0, :2], src) + m[:, 0, 2][:, None]) / w
-    py = (np.einsum("kj,nj->kn", m[:, 1, :2], src) + m[:, 1, 2][:, None]) / w
-    e = (px - dst[:, 0]) ** 2 + (py - dst[:, 1]) ** 2
+    with np.errstate(divide="ignore", invalid="ignore"):  # points on a hypothesis' horizon: inf, below
+        px = (np.einsum("kj,nj->kn", m[:, 0, :2], src) + m[:, 0, 2][:, None]) / w
+        py = (np.einsum("kj,nj->kn", m[:, 1, :2], src) + m[:, 1, 2][:, None]) / w
+        e = (px - dst[:, 0]) ** 2 + (py - dst[:, 1]) ** 2
     e[~np.isfinite(e) | (w <= 0)] = np.inf
     return e
 

@@ -106,7 +106,7 @@ class ProductParams(LinesParams):
     max_rotation_deg: float = param(30.0, "Rotations searched, +- degrees (georeferenced targets arrive "
                                           "north-up, so rotation is small).", minimum=0.0, maximum=180.0)
     max_scale: float = param(2.0, "Scales searched, 1/max_scale .. max_scale (2 registers the scale family's 0.5-2, "
-                                  "10/10 against 6/10 for 1.5, for 17 % more time on a 1000 px pair).",
+                                  "10/10 against 6/10 for 1.5, for 26 % more time on a 1000 px pair).",
                              minimum=1.0, maximum=4.0)
     coarse_px: int = param(96, "Longest reference side at the first search level, px.", minimum=32, maximum=512)
     coarse_local_sigma: float = param(3.0, "The search compares descriptors minus their local mean over this many "
