@@ -7,8 +7,8 @@ match by FFT), then refines the best candidates at twice the resolution. ``dense
 places templates on a regular grid of the reference and finds each one in the target warped by
 the current model, which gives many well-spread correspondences.
 
-Transforms are 2 x 3 affine matrices from target px to reference px (corner convention) of the
-images passed in.
+Transforms are 2 x 3 affine matrices (3 x 3 homographies where said) from target px to reference
+px (corner convention) of the images passed in.
 """
 from __future__ import annotations
 
@@ -22,20 +22,29 @@ from scipy import fft as sfft
 from .cfog import cfog, ncc_surface, peak_offset
 
 
-def to_cv(affine: np.ndarray) -> np.ndarray:
-    """The same map for OpenCV, whose pixel coordinates are centred on pixel centres."""
-    m = np.asarray(affine, float).copy()
-    m[:, 2] += m[:, :2].sum(axis=1) * 0.5 - 0.5
-    return m
+def _full(m) -> np.ndarray:
+    m = np.asarray(m, float)
+    return m if m.shape == (3, 3) else np.vstack([m, [0.0, 0.0, 1.0]])
 
 
-def apply(affine: np.ndarray, xy: np.ndarray) -> np.ndarray:
-    return np.asarray(xy, float) @ affine[:, :2].T + affine[:, 2]
+def to_cv(matrix: np.ndarray) -> np.ndarray:
+    """The same map (2 x 3 affine or 3 x 3 homography) for OpenCV, whose pixel coordinates are
+    centred on pixel centres."""
+    shift = np.array([[1.0, 0, 0.5], [0, 1.0, 0.5], [0, 0, 1.0]])
+    m = np.linalg.inv(shift) @ _full(matrix) @ shift
+    return m / m[2, 2] if np.shape(matrix) == (3, 3) else m[:2]
 
 
-def invert(affine: np.ndarray) -> np.ndarray:
-    full = np.vstack([affine, [0, 0, 1]])
-    return np.linalg.inv(full)[:2]
+def apply(matrix: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    """Points (N, 2) through a 2 x 3 affine or a 3 x 3 homography."""
+    m = np.asarray(matrix, float)
+    out = np.asarray(xy, float) @ m[:, :2].T + m[:, 2]
+    return out[:, :2] / out[:, 2:] if m.shape == (3, 3) else out
+
+
+def invert(matrix: np.ndarray) -> np.ndarray:
+    inv = np.linalg.inv(_full(matrix))
+    return inv if np.shape(matrix) == (3, 3) else inv[:2]
 
 
 def similarity(angle_deg: float, scale: float, centre_from, centre_to) -> np.ndarray:
@@ -45,12 +54,14 @@ def similarity(angle_deg: float, scale: float, centre_from, centre_to) -> np.nda
     return np.column_stack([lin, np.asarray(centre_to, float) - lin @ np.asarray(centre_from, float)])
 
 
-def warp(image: np.ndarray, valid: np.ndarray, affine: np.ndarray, shape) -> Tuple[np.ndarray, np.ndarray]:
-    """``image`` resampled onto a ``shape`` grid through ``affine`` (image px -> grid px), with its validity."""
+def warp(image: np.ndarray, valid: np.ndarray, matrix: np.ndarray, shape) -> Tuple[np.ndarray, np.ndarray]:
+    """``image`` resampled onto a ``shape`` grid through ``matrix`` (2 x 3 affine or 3 x 3
+    homography, image px -> grid px), with its validity."""
     h, w = shape
-    m = to_cv(affine)
-    out = cv2.warpAffine(image.astype(np.float32), m, (w, h), flags=cv2.INTER_LINEAR, borderValue=0)
-    ok = cv2.warpAffine(valid.astype(np.uint8), m, (w, h), flags=cv2.INTER_NEAREST, borderValue=0) > 0
+    m = to_cv(matrix)
+    fn = cv2.warpPerspective if m.shape == (3, 3) else cv2.warpAffine
+    out = fn(image.astype(np.float32), m, (w, h), flags=cv2.INTER_LINEAR, borderValue=0)
+    ok = fn(valid.astype(np.uint8), m, (w, h), flags=cv2.INTER_NEAREST, borderValue=0) > 0
     return out, ok
 
 
@@ -226,18 +237,19 @@ def grid(shape, valid, half: int, limit: int) -> np.ndarray:
     return pts[ok]
 
 
-def dense_matches(target, t_valid, reference, r_valid, affine, *, template: int = 64, search: int = 8,
+def dense_matches(target, t_valid, reference, r_valid, model, *, template: int = 64, search: int = 8,
                   limit: int = 400, min_ncc: float = 0.2, bins: int = 9, sigma: float = 0.8,
                   reference_descriptors: Optional[np.ndarray] = None):
     """Correspondences on a reference grid: each CFOG template found in the target warped by
-    ``affine`` within +-``search`` px. Returns (target px, reference px, NCC peak), weak peaks dropped.
+    ``model`` (2 x 3 affine or 3 x 3 homography, target px -> reference px) within +-``search`` px.
+    Returns (target px, reference px, NCC peak), weak peaks dropped.
     ``reference_descriptors`` (``cfog(reference, bins, sigma, valid=r_valid)``) saves recomputing them."""
-    warped, wok = warp(target, t_valid, affine, reference.shape)
+    warped, wok = warp(target, t_valid, model, reference.shape)
     dt = cfog(warped, bins, sigma, valid=wok)
     dr = cfog(reference, bins, sigma, valid=r_valid) if reference_descriptors is None else reference_descriptors
     half = template // 2
     pts = grid(reference.shape, r_valid & wok, half + search, limit)
-    inv = invert(affine)
+    inv = invert(model)
     tx, rx, pk = [], [], []
     for x, y in pts:
         x0, y0 = x - half, y - half

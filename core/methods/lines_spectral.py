@@ -187,20 +187,31 @@ def _coarse_from_lines(target, reference, params, monitor) -> np.ndarray:
     return affine
 
 
-def _affine_fit(found):
-    """RANSAC affine of dense matches: (2 x 3 matrix, inlier count), or (None, 0)."""
-    if len(found[0]) < 3:
-        return None, 0
+def _ransac_fit(found, kind):
     try:
-        model, inliers = ransac(found[0], found[1], "affine", threshold_px=3.0, rng=0)
+        model, inliers = ransac(found[0], found[1], kind, threshold_px=3.0, rng=0)
     except ValueError:
         return None, 0
-    return model.matrix[:2], int(inliers.sum())
+    return model.matrix, int(inliers.sum())
+
+
+def _fit(found, gain: float = 1.1):
+    """RANSAC model of dense matches: an affine (2 x 3), or a homography (3 x 3) where it explains
+    ``gain`` times as many matches plus 5, so that the second pass follows perspective without
+    extrapolating a homography that the matches do not need; with its inlier count, or (None, 0)."""
+    if len(found[0]) < 3:
+        return None, 0
+    affine, n_affine = _ransac_fit(found, "affine")
+    homography, n_homography = _ransac_fit(found, "projective") if len(found[0]) >= 8 else (None, 0)
+    if homography is not None and n_homography >= gain * n_affine + 5:
+        return homography, n_homography
+    return (None if affine is None else affine[:2]), n_affine
 
 
 def match_product(target, reference, params: ProductParams, monitor: Monitor) -> Matches:
     """Coarse candidates, each checked by a dense CFOG pass and RANSAC (the first that most matches
-    agree with wins, else the one with most inliers), then a second dense pass from its fit."""
+    agree with wins, else the one with most inliers), then a second dense pass from its fit (a
+    homography when the first pass gave enough matches)."""
     t0 = time.perf_counter()
     sar = sar_image(target, params)
     diag = {}
@@ -217,28 +228,28 @@ def match_product(target, reference, params: ProductParams, monitor: Monitor) ->
     diag["coarse_s"] = round(time.perf_counter() - t0, 3)
     ref_desc = cfog(reference.data, valid=reference.valid)
 
-    def dense(affine, search):
+    def dense(model, search):
         monitor.check()
-        return multimodal.dense_matches(sar, target.valid, reference.data, reference.valid, affine,
+        return multimodal.dense_matches(sar, target.valid, reference.data, reference.valid, model,
                                         template=params.template_px, search=search, limit=params.max_points,
                                         min_ncc=params.min_ncc, reference_descriptors=ref_desc)
     best = (None, 0, None, -1)
     for k, start in enumerate(starts):
         found = dense(start, params.search_px)
-        affine, n_in = _affine_fit(found)
+        model, n_in = _fit(found)
         if n_in > best[1]:
-            best = (affine, n_in, found, k)
+            best = (model, n_in, found, k)
         if n_in >= max(20, 0.5 * len(found[0])):
             break
-    affine, n_in, found, k = best
+    model, n_in, found, k = best
     diag.update(candidate=k, dense_pass1=0 if found is None else len(found[0]), pass1_inliers=n_in)
-    if affine is None:
+    if model is None:
         return Matches.empty(0, 0) if found is None else Matches(found[0], found[1], found[2], 0, 0, diag)
-    lin = affine[:, :2]
+    lin = model[:2, :2] / (model[2, 2] if model.shape == (3, 3) else 1.0)
     diag["coarse"] = {"rotation_deg": round(math.degrees(math.atan2(lin[1, 0], lin[0, 0])), 2),
                       "scale": round(math.sqrt(abs(np.linalg.det(lin))), 4)}
     monitor.report(0.7, "dense CFOG matching")
-    tx, rx, peak = dense(affine, 4)
+    tx, rx, peak = dense(model, 4)
     diag["dense_pass2"] = len(tx)
     diag["dense_s"] = round(time.perf_counter() - t0 - diag["coarse_s"], 3)
     monitor.report(1.0, "dense CFOG matching")

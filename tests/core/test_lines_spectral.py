@@ -257,3 +257,18 @@ def test_triplet_robust_option_registers_sift_matches(tmp_path, shared):
     case = build_case(spec, str(tmp_path), 400, str(shared / "data"))
     result = register(case.target, case.reference, "sift", options=RegisterOptions(robust="triplets", refine="off"))
     assert np.sqrt(np.mean(case.errors(result.model) ** 2)) < 0.5
+
+
+def test_dense_model_is_a_homography_only_where_perspective_needs_it():
+    from hamta.core.methods.lines_spectral import _fit
+
+    rng = np.random.default_rng(8)
+    ref = rng.uniform(0, 600, (300, 2))
+    h = np.array([[1.0, 0.05, 10.0], [0.02, 0.95, -5.0], [4e-4, -3e-4, 1.0]])  # strong perspective
+    tgt = apply(np.linalg.inv(h), ref) + rng.normal(0, 0.3, ref.shape)
+    model, _ = _fit((tgt, ref))
+    assert model.shape == (3, 3) and np.abs(apply(model, tgt) - ref).max() < 2.0
+    affine = similarity(12.0, 1.1, (300, 300), (310, 290))
+    tgt = apply(np.linalg.inv(np.vstack([affine, [0, 0, 1]])), ref) + rng.normal(0, 0.3, ref.shape)
+    model, n = _fit((tgt, ref))
+    assert model.shape == (2, 3) and n >= 290
