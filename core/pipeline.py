@@ -20,10 +20,10 @@ from .coords import pixel_to_map
 from .errors import InsufficientMatchesError
 from .estimation.framed import CrsFrame, fit_framed
 from .estimation.models import MIN_POINTS, LinearModel, canonical_model, fit_model
-from .estimation.ransac import ransac
+from .estimation.ransac import ransac_or_none
 from .io.raster import open_raster, resolve_bands
-from .matching.spectral import triplet_clustering
 from .io.working import TARGET_GEOREF_CHOICES, prepare_working_images
+from .matching.spectral import triplet_clustering
 from .methods import get_method
 from .progress import Monitor
 from .refine import grid_points, refine_points, spread_subset
@@ -212,23 +212,15 @@ def _robust_linear(tgt_px, ref_px, kind, threshold, seed, need, method, target_p
     if robust == "none":
         return LinearModel.fit(kind, tgt_px, ref_px), np.ones(n, bool)
     if robust == "triplets":
-        affine, inliers = triplet_clustering(tgt_px, ref_px, radius_px=4 * threshold, inlier_px=threshold, seed=seed)
+        _, inliers = triplet_clustering(tgt_px, ref_px, radius_px=4 * threshold, inlier_px=threshold, seed=seed)
         model = LinearModel.fit(kind, tgt_px[inliers], ref_px[inliers]) if inliers.sum() >= need else None
     else:
-        model, inliers = _ransac(tgt_px, ref_px, kind, threshold, seed)
+        model, inliers = ransac_or_none(tgt_px, ref_px, kind, threshold_px=threshold, rng=seed)
     if model is None or inliers.sum() < need:
         raise InsufficientMatchesError(
             f"Only {int(inliers.sum())} of {n} correspondences found by '{method}' for '{target_path}' agree "
             f"on one {kind} transform (at least {need} are needed). The images may not overlap, or differ "
             "too much for this method.", int(inliers.sum()), need)
-    return model, inliers
-
-
-def _ransac(tgt_px, ref_px, kind, threshold, seed):
-    try:
-        model, inliers = ransac(tgt_px, ref_px, kind, threshold_px=threshold, rng=seed)
-    except ValueError:
-        return None, np.zeros(len(tgt_px), bool)
     return model, inliers
 
 

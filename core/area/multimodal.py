@@ -19,6 +19,7 @@ import cv2
 import numpy as np
 from scipy import fft as sfft
 
+from ..coords import apply_matrix, matrix_corner_to_opencv
 from .cfog import cfog, ncc_surface, peak_offset
 
 
@@ -27,19 +28,9 @@ def _full(m) -> np.ndarray:
     return m if m.shape == (3, 3) else np.vstack([m, [0.0, 0.0, 1.0]])
 
 
-def to_cv(matrix: np.ndarray) -> np.ndarray:
-    """The same map (2 x 3 affine or 3 x 3 homography) for OpenCV, whose pixel coordinates are
-    centred on pixel centres."""
-    shift = np.array([[1.0, 0, 0.5], [0, 1.0, 0.5], [0, 0, 1.0]])
-    m = np.linalg.inv(shift) @ _full(matrix) @ shift
-    return m / m[2, 2] if np.shape(matrix) == (3, 3) else m[:2]
-
-
 def apply(matrix: np.ndarray, xy: np.ndarray) -> np.ndarray:
     """Points (N, 2) through a 2 x 3 affine or a 3 x 3 homography."""
-    m = np.asarray(matrix, float)
-    out = np.asarray(xy, float) @ m[:, :2].T + m[:, 2]
-    return out[:, :2] / out[:, 2:] if m.shape == (3, 3) else out
+    return apply_matrix(_full(matrix), xy)
 
 
 def invert(matrix: np.ndarray) -> np.ndarray:
@@ -58,8 +49,8 @@ def warp(image: np.ndarray, valid: np.ndarray, matrix: np.ndarray, shape) -> Tup
     """``image`` resampled onto a ``shape`` grid through ``matrix`` (2 x 3 affine or 3 x 3
     homography, image px -> grid px), with its validity."""
     h, w = shape
-    m = to_cv(matrix)
-    fn = cv2.warpPerspective if m.shape == (3, 3) else cv2.warpAffine
+    m = matrix_corner_to_opencv(_full(matrix))
+    m, fn = (m, cv2.warpPerspective) if np.shape(matrix) == (3, 3) else (m[:2], cv2.warpAffine)
     out = fn(image.astype(np.float32), m, (w, h), flags=cv2.INTER_LINEAR, borderValue=0)
     ok = fn(valid.astype(np.uint8), m, (w, h), flags=cv2.INTER_NEAREST, borderValue=0) > 0
     return out, ok
@@ -231,9 +222,11 @@ def grid(shape, valid, half: int, limit: int) -> np.ndarray:
     xs = np.arange(half + 1, w - half, step)
     ys = np.arange(half + 1, h - half, step)
     gx, gy = np.meshgrid(np.floor(xs), np.floor(ys))
-    pts = np.column_stack([gx.ravel(), gy.ravel()]).astype(int)
-    ok = np.array([valid[y - half:y + half, x - half:x + half].mean() >= 0.95 for x, y in pts], bool) \
-        if len(pts) else np.zeros(0, bool)
+    x, y = gx.ravel().astype(int), gy.ravel().astype(int)
+    ii = cv2.integral(valid.astype(np.uint8))  # window sums of valid[y - half:y + half, x - half:x + half]
+    count = ii[y + half, x + half] - ii[y - half, x + half] - ii[y + half, x - half] + ii[y - half, x - half]
+    pts = np.column_stack([x, y])
+    ok = count >= 0.95 * (2 * half) ** 2
     return pts[ok]
 
 

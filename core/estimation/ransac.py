@@ -69,6 +69,12 @@ def _minimal_projective(s: np.ndarray, d: np.ndarray):
 _MINIMAL = {"similarity": _minimal_similarity, "affine": _minimal_affine, "projective": _minimal_projective}
 
 
+def minimal_fits(kind: str, src: np.ndarray, dst: np.ndarray):
+    """Exact 3 x 3 transforms (K, 3, 3) of K minimal samples (K, m, 2) -> (K, m, 2), and a
+    well-conditioned flag per sample."""
+    return _MINIMAL[kind](np.asarray(src, float), np.asarray(dst, float))
+
+
 def _squared_errors(m: np.ndarray, src: np.ndarray, dst: np.ndarray) -> np.ndarray:
     """(K, N) squared transfer errors of K hypotheses on N points."""
     w = np.einsum("kj,nj->kn", m[:, 2, :2], src) + m[:, 2, 2][:, None]
@@ -131,6 +137,14 @@ def ransac(src, dst, kind: str, *, threshold_px: float, max_trials: int = 5000,
     if best_inliers is None or best_inliers.sum() < m:
         raise ValueError(f"no {kind} hypothesis gathered {m} inliers within {threshold_px:g} px")
     return polish(src0, dst0, kind, best_inliers, threshold_px)
+
+
+def ransac_or_none(src, dst, kind: str, *, threshold_px: float, rng=0):
+    """:func:`ransac`, or (None, no inliers) where no hypothesis gathers a minimal sample."""
+    try:
+        return ransac(src, dst, kind, threshold_px=threshold_px, rng=rng)
+    except ValueError:
+        return None, np.zeros(len(src), bool)
 
 
 def _isotropic(xy: np.ndarray) -> np.ndarray:

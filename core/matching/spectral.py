@@ -20,6 +20,9 @@ from typing import Tuple
 
 import numpy as np
 from scipy.spatial import Voronoi, cKDTree
+from scipy.spatial.distance import cdist
+
+from ..estimation.ransac import minimal_fits
 
 FUSIONS = ("score", "cascade")
 VSPM_PROXIMITIES = ("printed", "laplacian", "gaussian")
@@ -42,13 +45,9 @@ def align_signs(u: np.ndarray, v: np.ndarray, quantiles: int = 21) -> np.ndarray
     return v * np.where(flip, -1.0, 1.0)
 
 
-def _squared_distances(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return ((a[:, None, :] - b[None, :, :]) ** 2).sum(axis=2)
-
-
 def gaussian_proximity(xy: np.ndarray, sigma: float) -> np.ndarray:
     """H_ij = exp(-r_ij / (2 sigma^2)), r_ij the squared distance (eq. 2-68)."""
-    return np.exp(-_squared_distances(xy, xy) / (2.0 * sigma ** 2))
+    return np.exp(-cdist(xy, xy, "sqeuclidean") / (2.0 * sigma ** 2))
 
 
 def rms_spread(xy: np.ndarray) -> float:
@@ -71,14 +70,18 @@ def eigenvector_distances(xy1: np.ndarray, xy2: np.ndarray, h1: np.ndarray, h2: 
     the second's signs aligned to the first's (eq. 2-72)."""
     k = min(len(xy1), len(xy2))
     u = modes(h1, k)
-    return _squared_distances(u, align_signs(u, modes(h2, k)))
+    return cdist(u, align_signs(u, modes(h2, k)), "sqeuclidean")
+
+
+def modal_distances(xy1, xy2, sigma_factor: float = 0.5) -> np.ndarray:
+    """Shapiro-Brady's Z with Gaussian proximity, sigma = ``sigma_factor`` x each set's RMS spread."""
+    return eigenvector_distances(xy1, xy2, gaussian_proximity(xy1, sigma_factor * rms_spread(xy1)),
+                                 gaussian_proximity(xy2, sigma_factor * rms_spread(xy2)))
 
 
 def eigenvector_match(xy1, xy2, sigma_factor: float = 0.5):
-    """Shapiro-Brady: Gaussian proximity with sigma = ``sigma_factor`` x each set's RMS spread, the
-    modal distances Z, mutual minima."""
-    z = eigenvector_distances(xy1, xy2, gaussian_proximity(xy1, sigma_factor * rms_spread(xy1)),
-                              gaussian_proximity(xy2, sigma_factor * rms_spread(xy2)))
+    """Shapiro-Brady: the modal distances Z, mutual minima."""
+    z = modal_distances(xy1, xy2, sigma_factor)
     i, j = mutual_best(z, largest=False)
     return i, j, -z[i, j]
 
@@ -186,24 +189,12 @@ def fused_match(xy1, xy2, cells1, cells2, angle1, angle2, *, rule: str = "score"
         return i, j, -z[i, j]
     if rule != "score":
         raise ValueError(f"fusion rule must be one of {FUSIONS}, got {rule!r}")
-    za = eigenvector_distances(xy1, xy2, gaussian_proximity(xy1, sigma_factor * rms_spread(xy1)),
-                               gaussian_proximity(xy2, sigma_factor * rms_spread(xy2)))
+    za = modal_distances(xy1, xy2, sigma_factor)
     sa = 1.0 - za / max(float(za.max()), 1e-12)
     sb = _minmax(vspm_similarity(cells1, cells2, proximity))
     s = np.where(mask, weight * sa + (1.0 - weight) * sb, -np.inf)
     i, j = mutual_best(s, largest=True)
     return i, j, s[i, j]
-
-
-def _affine_from(src: np.ndarray, dst: np.ndarray):
-    """Exact affines (T, 2, 3) of T point triples (T, 3, 2) -> (T, 3, 2), with a well-conditioned flag."""
-    a = np.concatenate([src, np.ones(src.shape[:2] + (1,))], axis=2)
-    det = np.linalg.det(a)
-    ok = np.abs(det) > 1e-6 * np.maximum(np.abs(src).max(axis=(1, 2)) ** 2, 1.0)
-    m = np.zeros((len(src), 2, 3))
-    if ok.any():
-        m[ok] = np.swapaxes(np.linalg.solve(a[ok], dst[ok]), 1, 2)
-    return m, ok
 
 
 def triplet_clustering(src, dst, *, radius_px: float, inlier_px: float, min_area_px2: float = 100.0,
@@ -231,7 +222,8 @@ def triplet_clustering(src, dst, *, radius_px: float, inlier_px: float, min_area
                             - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1]))
     s3, d3 = src[tri], dst[tri]
     keep = (area(s3) >= min_area_px2) & (area(d3) >= min_area_px2)
-    m, ok = _affine_from(s3[keep], d3[keep])
+    m, ok = minimal_fits("affine", s3[keep], d3[keep])
+    m = m[:, :2]
     det = np.abs(m[:, 0, 0] * m[:, 1, 1] - m[:, 0, 1] * m[:, 1, 0])
     ok &= (det >= scale_range[0] ** 2) & (det <= scale_range[1] ** 2)
     m = m[ok]

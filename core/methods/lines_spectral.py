@@ -29,7 +29,7 @@ import numpy as np
 
 from ..area import multimodal
 from ..area.cfog import cfog
-from ..estimation.ransac import ransac
+from ..estimation.ransac import ransac_or_none
 from ..features import lines as ln
 from ..matching import spectral
 from ..preprocess.sar import SAR_UNITS, lee_filter, normalised_amplitude
@@ -188,11 +188,8 @@ def _coarse_from_lines(target, reference, params, monitor) -> np.ndarray:
 
 
 def _ransac_fit(found, kind):
-    try:
-        model, inliers = ransac(found[0], found[1], kind, threshold_px=3.0, rng=0)
-    except ValueError:
-        return None, 0
-    return model.matrix, int(inliers.sum())
+    model, inliers = ransac_or_none(found[0], found[1], kind, threshold_px=3.0, rng=0)
+    return (None, 0) if model is None else (model.matrix, int(inliers.sum()))
 
 
 def _fit(found, gain: float = 1.1):
@@ -267,21 +264,22 @@ METHOD = register_method(Method(
     citation=CITATION + "; Ye et al. 2019, IEEE TGRS 57(11):9059-9070 (CFOG)", params_type=ProductParams,
     match=match_product, refinement=CFOG_REFINEMENT))
 
+# The thesis's matches are few and imprecise: its transform comes from triplet clustering with a
+# 5 px tolerance, and 3 agreeing matches are accepted (the model's own minimum still applies).
+_THESIS = dict(robust="triplets", ransac_threshold_px=5.0, min_inliers=3, refinement=CFOG_REFINEMENT)
+
 FAITHFUL = register_method(Method(
     name="lines-spectral-faithful", title="Line intersections + eigenvector/VSPM fusion, as in the thesis",
     summary="Lee, GGS edges, Radon lines, intersections, fused eigenvector and VSPM matching; the thesis's future "
             "work (transform clustering over matched triplets) gives the transform.",
-    citation=CITATION, params_type=LinesParams, match=match_lines, kind="faithful", robust="triplets",
-    ransac_threshold_px=5.0, min_inliers=3, refinement=CFOG_REFINEMENT))
+    citation=CITATION, params_type=LinesParams, match=match_lines, kind="faithful", **_THESIS))
 
 EIGEN = register_method(Method(
     name="lines-eigen", title="Line intersections + Shapiro-Brady eigenvector matching (spec 003 baseline)",
     summary="The thesis pipeline with eigenvector matching alone.", citation=CITATION, params_type=EigenParams,
-    match=match_lines, kind="baseline", robust="triplets", ransac_threshold_px=5.0, min_inliers=3,
-    refinement=CFOG_REFINEMENT))
+    match=match_lines, kind="baseline", **_THESIS))
 
 VSPM = register_method(Method(
     name="lines-vspm", title="Line intersections + VSPM (spec 003 baseline)",
     summary="The thesis pipeline with Voronoi/Hausdorff spectral matching alone.", citation=CITATION,
-    params_type=VspmParams, match=match_lines, kind="baseline", robust="triplets", ransac_threshold_px=5.0,
-    min_inliers=3, refinement=CFOG_REFINEMENT))
+    params_type=VspmParams, match=match_lines, kind="baseline", **_THESIS))
