@@ -10,13 +10,16 @@ APT_PACKAGES := qgis python3-qgis qgis-providers python3-numpy python3-scipy pyt
 	qttools5-dev-tools pyqt5-dev-tools
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: demo test test-wheels test-debian sysdeps i18n bench clean
+.PHONY: demo test lint test-wheels test-debian sysdeps i18n bench clean
 
 demo: $(VENV)/.ok
 	$(VENV)/bin/hamta demo --out demo-output
 
 test: $(VENV)/.ok $(QVENV)/.ok
-	$(MAKE) --no-print-directory test-wheels test-debian
+	$(MAKE) --no-print-directory lint test-wheels test-debian
+
+lint: $(VENV)/.ok
+	$(VENV)/bin/ruff check .
 
 # Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL).
 test-wheels: $(VENV)/.ok
@@ -24,7 +27,7 @@ test-wheels: $(VENV)/.ok
 
 # Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...).
 test-debian: $(QVENV)/.ok
-	$(QVENV)/bin/python -P -m pytest tests -q
+	$(QVENV)/bin/python -P -m pytest tests -q -m "not packaging"
 
 bench: $(VENV)/.ok
 	$(VENV)/bin/hamta bench
@@ -49,8 +52,9 @@ $(QVENV)/.ok: pyproject.toml | sysdeps
 	touch $@
 
 # Collect new strings into the .ts files (existing translations are kept), then compile them.
-i18n: sysdeps
-	pylupdate5 processing/*.py plugin/*.py -ts i18n/hamta_fa.ts i18n/hamta_en.ts
+i18n: sysdeps $(QVENV)/.ok
+	$(QVENV)/bin/python -P tools/i18n_strings.py > i18n/core_strings.py
+	pylupdate5 processing/*.py plugin/*.py i18n/core_strings.py -ts i18n/hamta_fa.ts i18n/hamta_en.ts
 	lrelease -silent i18n/*.ts
 
 clean:

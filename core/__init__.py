@@ -1,8 +1,19 @@
-"""Hamta's engine: raster IO, matching, estimation and outputs. Never imports QGIS."""
-from .errors import (GeoreferencingError, HamtaError, InputError, InsufficientMatchesError, NoOverlapError,
-                     OutputError, RegistrationCanceled)
-from .pipeline import RegisterOptions, register
+"""Hamta's engine: raster IO, matching, estimation and outputs. Never imports QGIS or anything outside ``core``."""
+from .errors import (
+                     GeoreferencingError,
+                     HamtaError,
+                     InputError,
+                     InsufficientMatchesError,
+                     NoOverlapError,
+                     OutputError,
+                     RegistrationCanceled,
+)
+from .options import OutputOptions, RegisterOptions
+from .pipeline import register
 from .result import RegistrationResult
+from .run import run
+from .version import __version__
 
-__all__ = ["register", "RegisterOptions", "RegistrationResult", "HamtaError", "InputError", "NoOverlapError",
-           "GeoreferencingError", "InsufficientMatchesError", "OutputError", "RegistrationCanceled"]
+__all__ = ["register", "run", "RegisterOptions", "OutputOptions", "RegistrationResult", "HamtaError", "InputError",
+           "NoOverlapError", "GeoreferencingError", "InsufficientMatchesError", "OutputError", "RegistrationCanceled",
+           "__version__"]

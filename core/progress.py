@@ -1,6 +1,7 @@
 """Progress reporting and cancellation, bridged by each front end (CLI bar, Processing feedback)."""
 from __future__ import annotations
 
+import time
 from typing import Callable, Optional
 
 from .errors import RegistrationCanceled
@@ -47,3 +48,19 @@ class Monitor:
 
 
 NULL_MONITOR = Monitor()
+
+
+class Clock:
+    """Wall time of consecutive stages: ``lap(name)`` ends a stage; ``as_dict()`` adds the total."""
+
+    def __init__(self):
+        self.start = self.last = time.perf_counter()
+        self.laps = {}
+
+    def lap(self, name: str) -> None:
+        now = time.perf_counter()
+        self.laps[name] = round(now - self.last, 4)
+        self.last = now
+
+    def as_dict(self) -> dict:
+        return dict(self.laps, total=round(time.perf_counter() - self.start, 4))

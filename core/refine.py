@@ -9,8 +9,9 @@ Remote Sensing 9(7):676, :DOI:`10.3390/rs9070676`), applied at feature locations
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Optional, Tuple
+import math
+from dataclasses import dataclass, replace
+from typing import List, Optional, Tuple
 
 import cv2
 import numpy as np
@@ -18,9 +19,13 @@ from rasterio.windows import Window
 
 from .area.cfog import cfog, ncc_surface, peak_offset
 from .coords import as_xy
+from .errors import InsufficientMatchesError
 from .estimation.models import LinearModel
+from .estimation.robust import Estimate, RobustRules, robust_linear
+from .estimation.spread import spread_subset
 from .io.raster import RasterInfo, open_dataset, read_image
 from .progress import Monitor
+from .types import Correspondences
 
 
 @dataclass(frozen=True)
@@ -63,6 +68,10 @@ class RefineParams:
             raise ValueError(f"refinement similarity must be 'ncc' or 'cfog', got {self.similarity!r}")
 
 
+# For images of different modality: CFOG templates on a grid, found in the target at full resolution.
+STRUCTURAL_REFINEMENT = RefineParams(template_px=64, search_px=4, min_ncc=0.1, points="grid", similarity="cfog")
+
+
 def grid_points(model: LinearModel, target: RasterInfo, reference: RasterInfo, params: RefineParams) -> np.ndarray:
     """About ``params.max_points`` reference px (K, 2) on a regular grid over the part of the
     reference that ``model`` (target px -> reference px) says the target covers, a template's
@@ -89,37 +98,61 @@ def grid_points(model: LinearModel, target: RasterInfo, reference: RasterInfo, p
     return pts
 
 
-def spread_subset(xy: np.ndarray, score: np.ndarray, limit: int) -> np.ndarray:
-    """Indexes of at most ``limit`` points spread over their bounding box, best ``score`` per cell."""
-    xy = as_xy(xy)
-    n = len(xy)
-    if n <= limit:
-        return np.arange(n)
-    cells = max(1, int(np.ceil(np.sqrt(limit))))
-    lo, hi = xy.min(axis=0), xy.max(axis=0)
-    span = np.maximum(hi - lo, 1e-9)
-    cx = np.minimum((cells * (xy[:, 0] - lo[0]) / span[0]).astype(int), cells - 1)
-    cy = np.minimum((cells * (xy[:, 1] - lo[1]) / span[1]).astype(int), cells - 1)
-    cell = cy * cells + cx
-    order = np.lexsort((-score, cell))
-    first = order[np.r_[True, cell[order][1:] != cell[order][:-1]]]
-    rest = np.setdiff1d(order, first, assume_unique=True)
-    rest = rest[np.argsort(-score[rest], kind="stable")]
-    chosen = np.concatenate([first[np.argsort(-score[first], kind="stable")], rest])[:limit]
-    return np.sort(chosen)
+def refine_estimate(estimate: Estimate, method, refine: str, tolerance_px: float, target, reference,
+                    rules: RobustRules, monitor: Monitor) -> Tuple[Estimate, List[str]]:
+    """Refine ``estimate`` at full resolution in ``method.refinement.passes`` passes, each fitted
+    again with ``rules``; returns the last estimate that refined successfully (the working-resolution
+    one when the first pass fails) and notes saying why a pass was not used.
+
+    ``refine`` is the user's choice ('auto', 'on', 'off'); 'auto' refines when a working image was
+    decimated by more than 1.25 or ``method.refine`` is 'always'. ``tolerance_px`` is the run's
+    RANSAC tolerance in working pixels; refined points are fitted within ``max(1, tolerance_px)``
+    full-resolution pixels. ``target`` and ``reference`` are the working images.
+    """
+    decimation = max(target.source_px_per_working_px, reference.source_px_per_working_px)
+    if not (refine == "on" or (refine == "auto" and (method.refine == "always" or decimation > 1.25))):
+        return estimate, []
+    rp = replace(method.refinement,
+                 search_px=max(method.refinement.search_px, int(math.ceil(2.5 * decimation)) + 4))
+    threshold = max(1.0, tolerance_px)
+    robust = "ransac" if rules.robust == "triplets" else rules.robust
+    notes = []
+    for i in range(rp.passes):
+        sites = _refinement_sites(estimate, rp, target.info, reference.info)
+        points = refine_points(estimate.model, sites, target.info, target.bands, reference.info, reference.bands, rp,
+                               monitor.span(i / rp.passes, (i + 1) / rp.passes))
+        fallback = "working-resolution matches" if i == 0 else "previous pass"
+        if len(points) < rules.need:
+            notes.append(f"refinement kept only {len(points)} points; using the {fallback}")
+            break
+        try:
+            estimate = robust_linear(points, threshold, rules, robust, refined=True)
+        except InsufficientMatchesError as exc:
+            notes.append(f"refinement pass {i + 1} found no consistent model ({exc}); using the {fallback}")
+            break
+        rp = replace(rp, search_px=min(rp.search_px, 3))  # later passes start from the refined model
+    return estimate, notes
+
+
+def _refinement_sites(estimate: Estimate, params: RefineParams, target: RasterInfo, reference: RasterInfo):
+    """Reference px to refine: a grid over the overlap, or well-spread inliers."""
+    if params.points == "grid":
+        return grid_points(estimate.model, target, reference, params)
+    p = estimate.points
+    kept = p.reference_px[p.inlier]
+    return kept[spread_subset(kept, p.score[p.inlier], params.max_points)]
 
 
 def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterInfo, target_bands,
                   reference: RasterInfo, reference_bands, params: RefineParams = RefineParams(),
-                  monitor: Optional[Monitor] = None) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+                  monitor: Optional[Monitor] = None) -> Correspondences:
     """Refine correspondences at ``reference_xy`` (full-resolution reference px).
 
     Returns
     -------
-    target_px, reference_px : (K, 2)
-        Refined correspondences, full-resolution pixels of each raster.
-    ncc : (K,)
-        Correlation peak of each kept point.
+    Correspondences
+        Refined correspondences in full-resolution pixels of each raster, scored by their
+        correlation peak (not yet fitted).
     """
     monitor = monitor or Monitor()
     inverse = model.inverse()
@@ -137,9 +170,7 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
             if i % 16 == 0:
                 monitor.report(i / max(len(pts), 1), "refining")
     monitor.report(1.0, "refining")
-    if not out_t:
-        return np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0)
-    return np.array(out_t), np.array(out_r), np.array(out_c)
+    return Correspondences.unfitted(np.array(out_t), np.array(out_r), np.array(out_c))
 
 
 def _refine_one(p, inverse, target, target_bands, tds, reference, reference_bands, rds, t, s, min_ncc, similarity):

@@ -9,8 +9,11 @@ from typing import List, Optional
 import numpy as np
 
 from .coords import as_xy, gdal_coefficients, pixel_to_map
+from .estimation.robust import FinalFit
 from .io.raster import RasterInfo
 from .io.working import Plan
+from .types import Correspondences, Matches
+from .version import __version__
 
 REPORT_SCHEMA_VERSION = 1
 
@@ -34,20 +37,6 @@ class Gcp:
     @property
     def residual_px(self) -> float:
         return float(np.hypot(*self.residual_xy))
-
-
-@dataclass(frozen=True, eq=False)
-class Correspondences:
-    """Every correspondence the method returned, in full-resolution target and reference pixels,
-    with its score and whether the robust fit kept it (before any refinement)."""
-
-    target_px: np.ndarray
-    reference_px: np.ndarray
-    score: np.ndarray
-    inlier: np.ndarray
-
-    def __len__(self) -> int:
-        return len(self.target_px)
 
 
 @dataclass(frozen=True, eq=False)
@@ -133,8 +122,6 @@ def versions() -> dict:
     import scipy
     import shapely
 
-    from .. import __version__
-
     return {"hamta": __version__, "python": platform.python_version(), "numpy": np.__version__,
             "scipy": scipy.__version__, "opencv": cv2.__version__, "rasterio": rasterio.__version__,
             "gdal": rasterio.__gdal_version__, "pyproj": pyproj.__version__, "proj": pyproj.proj_version_str,
@@ -145,3 +132,46 @@ def params_dict(params) -> dict:
     return dataclasses.asdict(params) if dataclasses.is_dataclass(params) else dict(params or {})
 
 
+def make_gcps(fit: FinalFit, to_map) -> List[Gcp]:
+    """The GCPs of ``fit`` (enabled), followed by as many of its rejected correspondences, best
+    score first (disabled). ``to_map`` maps reference px to map coordinates."""
+    p, res = fit.points, _residuals(fit)
+    outliers = np.flatnonzero(~p.inlier)
+    outliers = outliers[np.argsort(-p.score[outliers], kind="stable")][: len(fit.used)]
+    gcps = []
+    for i, enabled in [(i, True) for i in fit.used] + [(i, False) for i in outliers]:
+        gcps.append(Gcp(tuple(map(float, p.target_px[i])), tuple(map(float, p.reference_px[i])),
+                        tuple(map(float, to_map(p.reference_px[i:i + 1])[0])), tuple(map(float, res[i])),
+                        float(p.score[i]), enabled))
+    return gcps
+
+
+def make_stats(matches: Matches, first: Correspondences, fit: FinalFit) -> dict:
+    """Counts and self-reported residual figures of a registration (never its accuracy)."""
+    p, used = fit.points, fit.used
+    used_res = np.linalg.norm(_residuals(fit)[used], axis=1)
+    loo = fit.model.loo_residuals(p.target_px[used], p.reference_px[used])
+    return {
+        "n_keypoints_target": int(matches.n_target), "n_keypoints_reference": int(matches.n_reference),
+        "n_matches": int(len(matches)), "n_inliers": int(first.inlier.sum()), "n_gcps": int(len(used)),
+        "n_refined": int(len(p)) if fit.refined else 0,
+        "rmse_px": float(np.sqrt(np.mean(used_res ** 2))),
+        "rms_loo_px": float(np.sqrt(np.nanmean(loo ** 2))) if np.isfinite(loo).any() else None,
+        "max_residual_px": float(used_res.max()),
+        "refined": bool(fit.refined),
+        "peak_rss_mb": peak_rss_mb(),
+    }
+
+
+def _residuals(fit: FinalFit) -> np.ndarray:
+    p = fit.points
+    return fit.model.apply(p.target_px) - p.reference_px if len(p) else np.zeros((0, 2))
+
+
+def peak_rss_mb() -> Optional[float]:
+    """Peak resident memory of this process so far (None where the OS does not say)."""
+    try:
+        import resource
+    except ImportError:
+        return None
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0

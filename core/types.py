@@ -78,3 +78,32 @@ class Matches:
     @classmethod
     def empty(cls, n_target: int = 0, n_reference: int = 0) -> "Matches":
         return cls(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0), n_target, n_reference)
+
+
+@dataclass(frozen=True, eq=False)
+class Correspondences:
+    """Correspondences in full-resolution target and reference pixels, with a score each and whether
+    the robust fit kept them (all False before any fit)."""
+
+    target_px: np.ndarray
+    reference_px: np.ndarray
+    score: np.ndarray
+    inlier: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.target_px)
+
+    @classmethod
+    def unfitted(cls, target_px, reference_px, score) -> "Correspondences":
+        score = np.asarray(score, float)
+        return cls(np.asarray(target_px, float).reshape(-1, 2), np.asarray(reference_px, float).reshape(-1, 2), score,
+                   np.zeros(len(score), bool))
+
+    @classmethod
+    def from_matches(cls, matches: Matches, target, reference) -> "Correspondences":
+        """Working-pixel ``matches`` as full-resolution pixels of each raster, through the working
+        images' ``to_source`` maps."""
+        if not len(matches):
+            return cls.unfitted(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
+        return cls.unfitted(target.to_source.forward(matches.target_xy),
+                            reference.to_source.forward(matches.reference_xy), matches.score)

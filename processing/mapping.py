@@ -1,13 +1,19 @@
-"""Pure mapping from Processing parameter values to core settings (no QGIS import, unit-tested)."""
+"""Pure mapping from Processing parameter values to core settings (no QGIS import, unit-tested).
+
+Enum parameters are built from :mod:`hamta.core.options` choices and mapped back with the same
+choice, so an enum index always means the value it was shown for.
+"""
 from __future__ import annotations
 
 import dataclasses
 from typing import Any, Dict, Mapping
 
-from ..core.estimation.models import MODEL_CHOICES
-from ..core.io.working import TARGET_GEOREF_CHOICES
-from ..core.outputs import GRID_CHOICES, RESAMPLING_CHOICES, OutputPaths
-from ..core.pipeline import REFINE_CHOICES, RegisterOptions
+from ..core.options import GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF, OutputOptions, RegisterOptions
+from ..core.outputs import OutputPaths
+
+# Processing parameter name -> the choice its enum shows.
+ENUMS = {"MODEL": MODEL, "RESAMPLING": RESAMPLING, "GRID": GRID, "REFINE": REFINE, "TARGET_GEOREF": TARGET_GEOREF}
+
 
 def method_parameter_name(field_name: str) -> str:
     """Processing parameter name of a method parameter (``ratio`` -> ``P_RATIO``)."""
@@ -26,30 +32,33 @@ def method_values(method, values: Mapping[str, Any]) -> Dict[str, Any]:
     return out
 
 
-def register_settings(values: Mapping[str, Any], default_model: str):
-    """(RegisterOptions, output keyword arguments) from plain parameter values.
+def _enum(values: Mapping[str, Any], name: str) -> str:
+    """The choice value of enum parameter ``name`` (its default when absent)."""
+    index = values.get(name)
+    return ENUMS[name].default if index is None else ENUMS[name].at(index)
+
+
+def register_settings(values: Mapping[str, Any]):
+    """(RegisterOptions, OutputPaths, OutputOptions) from plain parameter values.
 
     ``values`` holds Python values already parsed by the algorithm: enum indexes, ints, floats,
-    bands as 1-based ints (0 = automatic).
+    bands as 1-based ints (0 = automatic). The model's enum always carries a value (its default
+    is the method's default model, see the algorithm); other settings left empty take the
+    method's defaults in :func:`hamta.core.options.resolve_options`.
     """
-    model = MODEL_CHOICES[values["MODEL"]] if values.get("MODEL") is not None else default_model
     d = RegisterOptions()
     options = RegisterOptions(
-        model=model,
+        model=_enum(values, "MODEL") if values.get("MODEL") is not None else None,
         max_working_pixels=int(values.get("MAX_WORKING_PIXELS") or d.max_working_pixels),
         ransac_threshold_px=float(values["RANSAC_THRESHOLD"]) if values.get("RANSAC_THRESHOLD") else None,
         seed=int(values.get("SEED") or 0),
-        refine=REFINE_CHOICES[values.get("REFINE") or 0],
+        refine=_enum(values, "REFINE"),
         max_gcps=int(values.get("MAX_GCPS") or d.max_gcps),
-        target_georef=TARGET_GEOREF_CHOICES[values.get("TARGET_GEOREF") or 0],
+        target_georef=_enum(values, "TARGET_GEOREF"),
         target_band=values.get("TARGET_BAND") or None,
         reference_band=values.get("REFERENCE_BAND") or None,
     )
-    outputs = dict(
-        paths=OutputPaths(geotiff=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,
-                          gpkg=values.get("GCP_LAYER") or None, vrt=values.get("GCP_VRT") or None,
-                          report=values.get("REPORT") or None),
-        resampling=RESAMPLING_CHOICES[values.get("RESAMPLING", 1)],
-        grid=GRID_CHOICES[values.get("GRID") or 0],
-    )
-    return options, outputs
+    paths = OutputPaths(geotiff=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,
+                        gpkg=values.get("GCP_LAYER") or None, vrt=values.get("GCP_VRT") or None,
+                        report=values.get("REPORT") or None)
+    return options, paths, OutputOptions(resampling=_enum(values, "RESAMPLING"), grid=_enum(values, "GRID"))

@@ -7,8 +7,13 @@ from qgis.core import QgsProcessingProvider
 from qgis.PyQt.QtCore import QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
-from .register_algorithm import (RegisterNdsiftAlgorithm, RegisterRilbpAlgorithm, RegisterSarOpticalAlgorithm,
-                                 RegisterSibrifAlgorithm, RegisterSiftAlgorithm)
+from .register_algorithm import (
+    RegisterNdsiftAlgorithm,
+    RegisterRilbpAlgorithm,
+    RegisterSarOpticalAlgorithm,
+    RegisterSibrifAlgorithm,
+    RegisterSiftAlgorithm,
+)
 
 ICON = os.path.join(os.path.dirname(os.path.dirname(__file__)), "icon.svg")
 

@@ -3,52 +3,31 @@ from __future__ import annotations
 
 import dataclasses
 
-from qgis.core import (QgsProcessing, QgsProcessingAlgorithm, QgsProcessingException, QgsProcessingOutputNumber,
-                       QgsProcessingParameterBand, QgsProcessingParameterBoolean, QgsProcessingParameterDefinition,
-                       QgsProcessingParameterEnum, QgsProcessingParameterFileDestination,
-                       QgsProcessingParameterNumber, QgsProcessingParameterRasterDestination,
-                       QgsProcessingParameterRasterLayer, QgsProcessingParameterString,
-                       QgsProcessingParameterVectorDestination)
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingAlgorithm,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingParameterBand,
+    QgsProcessingParameterBoolean,
+    QgsProcessingParameterDefinition,
+    QgsProcessingParameterEnum,
+    QgsProcessingParameterFileDestination,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterRasterDestination,
+    QgsProcessingParameterRasterLayer,
+    QgsProcessingParameterString,
+    QgsProcessingParameterVectorDestination,
+)
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QCoreApplication
 
+from ..core import RegisterOptions, run
 from ..core.errors import HamtaError, RegistrationCanceled
-from ..core.estimation.models import MODEL_CHOICES
 from ..core.methods import get_method
-from ..core.outputs import write_outputs
-from ..core.pipeline import RegisterOptions, register
-from .mapping import method_parameter_name, method_values, register_settings
+from ..core.options import resolve_options
+from .mapping import ENUMS, method_parameter_name, method_values, register_settings
 
 _CONTEXT = "RegisterAlgorithm"  # every string below is translated in this context
-MODEL_LABELS = (
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Similarity (Helmert)"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Affine (polynomial 1)"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Projective"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Polynomial 2"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Polynomial 3"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Thin plate spline"),
-)
-RESAMPLING_LABELS = (
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Nearest neighbour"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Bilinear"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Cubic"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Cubic B-spline"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Lanczos"),
-)
-GRID_LABELS = (
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Automatic"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Reference pixel grid"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Target's native resolution"),
-)
-REFINE_LABELS = (
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Automatic (when images were decimated)"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Always"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Never"),
-)
-GEOREF_LABELS = (
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Use when it overlaps the reference"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Always use (fail otherwise)"),
-    QT_TRANSLATE_NOOP("RegisterAlgorithm", "Ignore"),
-)
 
 
 def _advanced(p):
@@ -95,44 +74,42 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
     def tags(self):
         return self.tr("georeference,coregistration,registration,GCP,match,align,warp").split(",")
 
+    def _enum(self, name, description, default=None):
+        """An enum parameter showing the translated labels of ``ENUMS[name]``, in its value order."""
+        choice = ENUMS[name]
+        return QgsProcessingParameterEnum(name, description, options=[self.tr(choice.labels[v]) for v in choice.values],
+                                          defaultValue=choice.index(default or choice.default))
+
     def initAlgorithm(self, config=None):
         method = get_method(self.METHOD)
-        d = RegisterOptions()
+        d = resolve_options(RegisterOptions(), method)
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Target raster (to georeference)")))
         self.addParameter(QgsProcessingParameterRasterLayer(self.REFERENCE, self.tr("Reference raster")))
-        model_default = MODEL_CHOICES.index(method.default_model)
-        self.addParameter(QgsProcessingParameterEnum(self.MODEL, self.tr("Transformation"),
-                                                     options=[self.tr(x) for x in MODEL_LABELS],
-                                                     defaultValue=model_default))
-        self.addParameter(QgsProcessingParameterEnum(self.RESAMPLING, self.tr("Resampling"),
-                                                     options=[self.tr(x) for x in RESAMPLING_LABELS], defaultValue=1))
+        self.addParameter(self._enum(self.MODEL, self.tr("Transformation"), d.model))
+        self.addParameter(self._enum(self.RESAMPLING, self.tr("Resampling")))
         self.addParameter(_advanced(QgsProcessingParameterBand(
             self.TARGET_BAND, self.tr("Target band to match (empty: luminance of RGB, else band 1)"),
             parentLayerParameterName=self.TARGET, optional=True)))
         self.addParameter(_advanced(QgsProcessingParameterBand(
             self.REFERENCE_BAND, self.tr("Reference band to match"), parentLayerParameterName=self.REFERENCE,
             optional=True)))
-        self.addParameter(_advanced(QgsProcessingParameterEnum(
-            self.TARGET_GEOREF, self.tr("Target's own georeferencing"), options=[self.tr(x) for x in GEOREF_LABELS],
-            defaultValue=0)))
-        self.addParameter(_advanced(QgsProcessingParameterEnum(
-            self.GRID, self.tr("Output pixel grid"), options=[self.tr(x) for x in GRID_LABELS], defaultValue=0)))
-        self.addParameter(_advanced(QgsProcessingParameterEnum(
-            self.REFINE, self.tr("Full-resolution refinement"), options=[self.tr(x) for x in REFINE_LABELS],
-            defaultValue=0)))
+        self.addParameter(_advanced(self._enum(self.TARGET_GEOREF, self.tr("Target's own georeferencing"))))
+        self.addParameter(_advanced(self._enum(self.GRID, self.tr("Output pixel grid"))))
+        self.addParameter(_advanced(self._enum(self.REFINE, self.tr("Full-resolution refinement"))))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.MAX_WORKING_PIXELS, self.tr("Working image size (pixels)"), QgsProcessingParameterNumber.Integer,
             d.max_working_pixels, minValue=4096)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.RANSAC_THRESHOLD, self.tr("RANSAC tolerance (working pixels)"), QgsProcessingParameterNumber.Double,
-            method.ransac_threshold_px, minValue=0.1)))
+            d.ransac_threshold_px, minValue=0.1)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.MAX_GCPS, self.tr("Maximum number of GCPs"), QgsProcessingParameterNumber.Integer, d.max_gcps,
             minValue=4)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.SEED, self.tr("Random seed"), QgsProcessingParameterNumber.Integer, d.seed, minValue=0)))
         for f in dataclasses.fields(method.params_type):
-            self.addParameter(_advanced(self._method_parameter(f)))
+            p = self._method_parameter(f)
+            self.addParameter(p if f.metadata.get("basic") else _advanced(p))
 
         self.addParameter(QgsProcessingParameterRasterDestination(self.OUTPUT, self.tr("Georeferenced raster")))
         self.addParameter(QgsProcessingParameterVectorDestination(
@@ -218,7 +195,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         values = self._values(parameters, context)
         if values[self.GCP_LAYER] and not values[self.GCP_LAYER].lower().endswith(".gpkg"):
             raise QgsProcessingException(self.tr("GCP points must be written to a GeoPackage (.gpkg) file."))
-        options, out = register_settings(values, method.default_model)
+        options, paths, output = register_settings(values)
 
         def progress(fraction, message):
             feedback.setProgress(100.0 * fraction)
@@ -226,14 +203,10 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
                 feedback.setProgressText(message)
 
         try:
-            result = register(target, reference, method=self.METHOD, params=method_values(method, values),
-                              options=options, progress=lambda f, m: progress(0.8 * f, m),
-                              is_canceled=feedback.isCanceled)
+            result, written = run(target, reference, paths, method=self.METHOD, params=method_values(method, values),
+                                  options=options, output=output, progress=progress, is_canceled=feedback.isCanceled)
             for note in result.notes:
                 feedback.pushInfo(note)
-            written = write_outputs(result, out["paths"], resampling=out["resampling"], grid=out["grid"],
-                                    progress=lambda f, m: progress(0.8 + 0.2 * f, m),
-                                    is_canceled=feedback.isCanceled)
         except RegistrationCanceled:
             raise QgsProcessingException(self.tr("Registration canceled; no outputs were written.")) from None
         except HamtaError as exc:
@@ -312,7 +285,7 @@ class RegisterNdsiftAlgorithm(RegisterAlgorithm):
 
 
 class RegisterSarOpticalAlgorithm(RegisterAlgorithm):
-    METHOD = "lines-spectral"
+    METHOD = "cfog"
     ALG_NAME = "registersaroptical"
     DISPLAY_NAME = QT_TRANSLATE_NOOP("RegisterAlgorithm", "Register SAR image onto optical image")
     HELP = QT_TRANSLATE_NOOP(

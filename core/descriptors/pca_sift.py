@@ -55,7 +55,7 @@ def train_basis(paths, n_components: int = N_COMPONENTS, max_patches: int = 2000
     30 and 60 degrees and scaled by 0.7. Deterministic for a seed."""
     import rasterio
 
-    from ..features.sift import SiftDetector, keypoints_from_opencv, OPENCV_SIFT_BIAS_PX
+    from ..features.sift import OPENCV_SIFT_BIAS_PX, SiftDetector, keypoints_from_opencv
     from ..preprocess.normalize import stretch_to_uint8
 
     vectors = []

@@ -1,7 +1,5 @@
 """Transform models and robust estimation."""
-from .models import (MODEL_CHOICES, LinearModel, PolynomialModel, ThinPlateSplineModel, canonical_model,
-                     fit_model, model_from_dict)
+from .models import LinearModel, PolynomialModel, ThinPlateSplineModel, fit_model, model_from_dict
 from .ransac import ransac
 
-__all__ = ["MODEL_CHOICES", "LinearModel", "PolynomialModel", "ThinPlateSplineModel", "canonical_model",
-           "fit_model", "model_from_dict", "ransac"]
+__all__ = ["LinearModel", "PolynomialModel", "ThinPlateSplineModel", "fit_model", "model_from_dict", "ransac"]

@@ -11,24 +11,14 @@ polynomial 2 and 3, thin plate spline (exact interpolation, as GDAL's ``-tps``).
 from __future__ import annotations
 
 from dataclasses import dataclass
+
 import numpy as np
 
 from ..coords import apply_matrix, as_xy
+from ..options import canonical_model
 
-MODEL_CHOICES = ("similarity", "affine", "projective", "polynomial-2", "polynomial-3", "tps")
-MODEL_ALIASES = {"helmert": "similarity", "polynomial-1": "affine", "poly1": "affine",
-                 "poly2": "polynomial-2", "poly3": "polynomial-3", "homography": "projective",
-                 "thin-plate-spline": "tps"}
 MIN_POINTS = {"similarity": 2, "affine": 3, "projective": 4, "polynomial-2": 6, "polynomial-3": 10,
               "tps": 3}
-
-
-def canonical_model(name: str) -> str:
-    """Validate a model name (QGIS-style aliases accepted) and return its canonical spelling."""
-    key = MODEL_ALIASES.get(name.lower(), name.lower())
-    if key not in MODEL_CHOICES:
-        raise ValueError(f"unknown model {name!r}; choose one of {', '.join(MODEL_CHOICES)}")
-    return key
 
 
 def _loo_from_blocks(design_blocks: np.ndarray, residuals: np.ndarray) -> np.ndarray:
@@ -341,7 +331,7 @@ class ThinPlateSplineModel:
 
 
 def fit_model(kind: str, src, dst):
-    """Least-squares fit of the model named ``kind`` (see :data:`MODEL_CHOICES`)."""
+    """Least-squares fit of the model named ``kind`` (see :data:`hamta.core.options.MODEL`)."""
     kind = canonical_model(kind)
     if kind in ("similarity", "affine", "projective"):
         return LinearModel.fit(kind, src, dst)

@@ -26,9 +26,9 @@ from shapely.geometry import Polygon, box
 
 from ..coords import as_xy, compose, map_to_pixel, pixel_to_map
 from ..errors import GeoreferencingError, InputError, NoOverlapError
+from ..options import TARGET_GEOREF
 from .raster import RasterInfo, budget_shape, read_image
 
-TARGET_GEOREF_CHOICES = ("auto", "use", "ignore")
 # Any projected CRS lets GDAL resample between two grids that share an unnamed CRS.
 _PLACEHOLDER_CRS = CRS.from_epsg(3857)
 
@@ -118,8 +118,7 @@ def prepare_working_images(target: RasterInfo, reference: RasterInfo, *, target_
     (WorkingImage, WorkingImage, Plan)
         Target and reference working images (pixels: working space) and the plan.
     """
-    if target_georef not in TARGET_GEOREF_CHOICES:
-        raise ValueError(f"target_georef must be one of {TARGET_GEOREF_CHOICES}, got {target_georef!r}")
+    TARGET_GEOREF.check(target_georef)
     prior, notes = _prior_usable(target, reference, target_georef)
     if prior:
         return _prepare_with_prior(target, reference, target_bands, reference_bands, max_pixels, notes)

@@ -1,9 +1,10 @@
 """The method registry: every matching method Hamta offers, by stable name.
 
 A method is a name, a frozen parameter dataclass with documented defaults, and a function
-``match(target, reference, params, monitor) -> Matches`` from two working images
-(:class:`hamta.core.io.working.WorkingImage`) to correspondences in working pixels. Front ends
-(CLI, Processing, benchmark) list and build methods only through this registry.
+``match(target, reference, params, monitor, seed=0) -> Matches`` from two working images
+(:class:`hamta.core.io.working.WorkingImage`) to correspondences in working pixels; ``seed``
+seeds every random choice the method makes. Front ends (CLI, Processing, benchmark) list and
+build methods only through this registry. A renamed method keeps its old name as an alias.
 """
 from __future__ import annotations
 
@@ -34,7 +35,7 @@ class Method:
     params_type : type
         Frozen dataclass of the method's parameters; every field has a default and a ``help``.
     match : callable
-        ``match(target, reference, params, monitor) -> Matches``.
+        ``match(target, reference, params, monitor, seed=0) -> Matches``.
     default_model : str
         Model used when the caller does not choose one.
     ransac_threshold_px : float
@@ -68,7 +69,10 @@ class Method:
     refinement: RefineParams = RefineParams()
 
     def make_params(self, values: Optional[Mapping[str, Any]] = None):
-        """Build the parameter dataclass from ``values`` (strings are converted); unknown keys fail."""
+        """Build the parameter dataclass from ``values`` (strings are converted; an instance of the
+        dataclass is returned as it is); unknown keys fail."""
+        if isinstance(values, self.params_type):
+            return values
         values = dict(values or {})
         fields = {f.name: f for f in dataclasses.fields(self.params_type)}
         unknown = sorted(set(values) - set(fields))
@@ -94,9 +98,13 @@ def _convert(field: dataclasses.Field, value):
     return value
 
 
-def param(default, help: str, **limits):
-    """A dataclass field with a documented default (``help``) and optional ``minimum``/``maximum``/``choices``."""
-    return dataclasses.field(default=default, metadata={"help": help, **limits})
+def param(default, help: str, *, basic: bool = False, **limits):
+    """A dataclass field with a documented default (``help``) and optional ``minimum``/``maximum``/``choices``.
+
+    ``basic`` marks the few parameters a user is expected to tune; front ends show the others as
+    advanced settings.
+    """
+    return dataclasses.field(default=default, metadata={"help": help, "basic": basic, **limits})
 
 
 def validate(params) -> None:
@@ -115,7 +123,7 @@ def validate(params) -> None:
 def match_with(features_fn: Callable, stage: str = "keypoints and descriptors") -> Callable:
     """A method's ``match`` from ``features_fn(working_image, params) -> Features``: features of the
     target, then of the reference, then the ratio test with ``params.ratio`` and ``params.cross_check``."""
-    def match(target, reference, params, monitor: Monitor) -> Matches:
+    def match(target, reference, params, monitor: Monitor, seed: int = 0) -> Matches:
         ft = features_fn(target, params)
         monitor.report(0.45, stage)
         fr = features_fn(reference, params)
@@ -127,22 +135,32 @@ def match_with(features_fn: Callable, stage: str = "keypoints and descriptors") 
 
 
 _REGISTRY: Dict[str, Method] = {}
+_ALIASES: Dict[str, str] = {}
 
 
-def register_method(method: Method) -> Method:
-    if method.name in _REGISTRY:
-        raise ValueError(f"method {method.name!r} is already registered")
+def register_method(method: Method, aliases=()) -> Method:
+    """Add ``method`` to the registry; ``aliases`` are former names that keep working."""
+    for name in (method.name,) + tuple(aliases):
+        if name in _REGISTRY or name in _ALIASES:
+            raise ValueError(f"method {name!r} is already registered")
     _REGISTRY[method.name] = method
+    _ALIASES.update({a: method.name for a in aliases})
     return method
 
 
 def get_method(name: str) -> Method:
-    """The method called ``name``; a ``ValueError`` lists the valid names otherwise."""
+    """The method called ``name`` (or formerly called so); a ``ValueError`` lists the valid names otherwise."""
     _load_builtin()
     try:
-        return _REGISTRY[name]
+        return _REGISTRY[_ALIASES.get(name, name)]
     except KeyError:
         raise ValueError(f"unknown method {name!r}; available: {', '.join(_REGISTRY)}") from None
+
+
+def method_aliases() -> Dict[str, str]:
+    """Former method names -> current names."""
+    _load_builtin()
+    return dict(_ALIASES)
 
 
 def all_methods() -> Dict[str, Method]:
@@ -152,5 +170,4 @@ def all_methods() -> Dict[str, Method]:
 
 def _load_builtin() -> None:
     """Import the built-in method modules once (each registers itself on import)."""
-    from . import (lines_spectral, ndsift_pc, orb, pca_sift, phasecorr, rilbp, rilbp_baselines,  # noqa: F401
-                   sibrif, sift)
+    from . import cfog, lines_spectral, ndsift_pc, orb, pca_sift, phasecorr, rilbp, rilbp_baselines, sibrif, sift  # noqa: F401

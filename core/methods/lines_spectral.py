@@ -1,4 +1,4 @@
-"""SAR onto optical: line intersections matched spectrally (spec 003), and the product built on it.
+"""SAR onto optical: line intersections matched spectrally (spec 003), as the thesis describes.
 
 Gholami, S. (2018). Automatic registration of synthetic aperture radar images onto optical images
 (in Persian). M.Sc. thesis, supervisor A. Ahmadyfard, Shahrood University of Technology. Its
@@ -12,29 +12,23 @@ matching, VSPM, or their fusion -> (the thesis's future work) an affine from eve
 triplet, the densest cluster of those transforms, and the matches it explains. Its baselines are
 the single matchers (``lines-eigen``, ``lines-vspm``).
 
-Product (``lines-spectral``): the thesis reports about 60 % correct among 5-8 matches, too few
-and too unreliable for a transform, so the coarse transform comes from an exhaustive rotation,
-scale and shift search on CFOG structural descriptors (``coarse='lines'`` uses the thesis's stage
-instead), then CFOG template matching on a grid gives hundreds of well-spread correspondences;
-the shared pipeline fits the model and refines decimated images with the same similarity.
+The thesis reports about 60 % correct among 5-8 matches, too few and too unreliable for a
+transform; the product for SAR onto optical is :mod:`hamta.core.methods.cfog`, which can start
+from this module's line matcher (``coarse='lines'``).
 """
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass
 
 import cv2
 import numpy as np
 
-from ..area import multimodal
-from ..area.cfog import cfog
-from ..estimation.ransac import ransac_or_none
 from ..features import lines as ln
 from ..matching import spectral
 from ..preprocess.sar import SAR_UNITS, lee_filter, normalised_amplitude
 from ..progress import Monitor
-from ..refine import RefineParams
+from ..refine import STRUCTURAL_REFINEMENT
 from ..types import Matches
 from . import Method, param, register_method, validate
 
@@ -95,34 +89,6 @@ class VspmParams(LinesParams):
     matcher: str = param("vspm", "VSPM alone (the thesis's baseline).", choices=MATCHERS)
 
 
-@dataclass(frozen=True)
-class ProductParams(LinesParams):
-    """The product: coarse transform, then dense CFOG matching. Line parameters apply with coarse='lines'."""
-
-    lee: bool = param(False, "No Lee filter: CFOG's smoothing already averages speckle, and the filter measured no "
-                             "gain (multimodal proxy 8/8 either way; real pairs 0.85 vs 1.06 px median).")
-    coarse: str = param("search", "Coarse transform: exhaustive CFOG search (default: it registers where the "
-                                  "thesis's 5-8 matches cannot) or the thesis's lines.", choices=("search", "lines"))
-    max_rotation_deg: float = param(30.0, "Rotations searched, +- degrees (georeferenced targets arrive "
-                                          "north-up, so rotation is small).", minimum=0.0, maximum=180.0)
-    max_scale: float = param(2.0, "Scales searched, 1/max_scale .. max_scale (2 registers the scale family's 0.5-2, "
-                                  "10/10 against 6/10 for 1.5, for 26 % more time on a 1000 px pair).",
-                             minimum=1.0, maximum=4.0)
-    coarse_px: int = param(96, "Longest reference side at the first search level, px.", minimum=32, maximum=512)
-    coarse_local_sigma: float = param(3.0, "The search compares descriptors minus their local mean over this many "
-                                           "first-level px: with the global mean (0) regional orientation statistics "
-                                           "favoured wrong axis-aligned candidates (overlap family 8/10; 3 px: "
-                                           "10/10, 6 px: 9/10).", minimum=0.0)
-    template_px: int = param(64, "Side of the CFOG templates, working px.", minimum=16)
-    search_px: int = param(24, "Search radius of the first dense pass, working px (covers the coarse error).",
-                           minimum=2)
-    min_ncc: float = param(0.1, "Weakest accepted template correlation; RANSAC removes the rest.", minimum=-1.0,
-                           maximum=1.0)
-    max_points: int = param(400, "Templates per dense pass.", minimum=10)
-    candidates: int = param(3, "Coarse candidates checked by dense matching when the best is not convincing.",
-                            minimum=1, maximum=5)
-
-
 def sar_image(img, params: LinesParams) -> np.ndarray:
     """The SAR (target) working image as normalised amplitude, Lee-filtered when asked."""
     amp = normalised_amplitude(img.data, img.valid, params.units)
@@ -164,7 +130,7 @@ def match_intersections(pt, pr, shape_t, shape_r, params: LinesParams):
                                 tolerance_deg=params.angle_tolerance_deg, proximity=params.vspm_proximity)
 
 
-def match_lines(target, reference, params: LinesParams, monitor: Monitor) -> Matches:
+def match_lines(target, reference, params: LinesParams, monitor: Monitor, seed: int = 0) -> Matches:
     """The thesis pipeline up to its matched intersection pairs (working px)."""
     info_t, info_r = {}, {}
     pt = line_features(sar_image(target, params), target.valid, params, info_t)
@@ -177,96 +143,9 @@ def match_lines(target, reference, params: LinesParams, monitor: Monitor) -> Mat
                    {"target": info_t, "reference": info_r})
 
 
-def _coarse_from_lines(target, reference, params, monitor) -> np.ndarray:
-    m = match_lines(target, reference, params, monitor)
-    diag = math.hypot(*reference.shape)
-    affine, inliers = spectral.triplet_clustering(m.target_xy, m.reference_xy, radius_px=0.03 * diag,
-                                                  inlier_px=0.02 * diag)
-    if affine is None or inliers.sum() < 3:
-        return None
-    return affine
-
-
-def _ransac_fit(found, kind):
-    model, inliers = ransac_or_none(found[0], found[1], kind, threshold_px=3.0, rng=0)
-    return (None, 0) if model is None else (model.matrix, int(inliers.sum()))
-
-
-def _fit(found, gain: float = 1.1):
-    """RANSAC model of dense matches: an affine (2 x 3), or a homography (3 x 3) where it explains
-    ``gain`` times as many matches plus 5, so that the second pass follows perspective without
-    extrapolating a homography that the matches do not need; with its inlier count, or (None, 0)."""
-    if len(found[0]) < 3:
-        return None, 0
-    affine, n_affine = _ransac_fit(found, "affine")
-    homography, n_homography = _ransac_fit(found, "projective") if len(found[0]) >= 8 else (None, 0)
-    if homography is not None and n_homography >= gain * n_affine + 5:
-        return homography, n_homography
-    return (None if affine is None else affine[:2]), n_affine
-
-
-def match_product(target, reference, params: ProductParams, monitor: Monitor) -> Matches:
-    """Coarse candidates, each checked by a dense CFOG pass and RANSAC (the first that most matches
-    agree with wins, else the one with most inliers), then a second dense pass from its fit (a
-    homography when the first pass gave enough matches)."""
-    t0 = time.perf_counter()
-    sar = sar_image(target, params)
-    diag = {}
-    if params.coarse == "lines":
-        affine = _coarse_from_lines(target, reference, params, monitor.span(0.0, 0.4))
-        starts = [] if affine is None else [affine]
-    else:
-        cands, _ = multimodal.search_similarity(
-            sar, target.valid, reference.data, reference.valid, max_rotation_deg=params.max_rotation_deg,
-            max_scale=params.max_scale, coarse_px=params.coarse_px, local_sigma=params.coarse_local_sigma,
-            progress=lambda f: monitor.report(0.4 * f, "coarse search"))
-        starts = [c["affine"] for c in cands[:params.candidates]]
-    monitor.report(0.4, "coarse transform")
-    diag["coarse_s"] = round(time.perf_counter() - t0, 3)
-    ref_desc = cfog(reference.data, valid=reference.valid)
-
-    def dense(model, search):
-        monitor.check()
-        return multimodal.dense_matches(sar, target.valid, reference.data, reference.valid, model,
-                                        template=params.template_px, search=search, limit=params.max_points,
-                                        min_ncc=params.min_ncc, reference_descriptors=ref_desc)
-    best = (None, 0, None, -1)
-    for k, start in enumerate(starts):
-        found = dense(start, params.search_px)
-        model, n_in = _fit(found)
-        if n_in > best[1]:
-            best = (model, n_in, found, k)
-        if n_in >= max(20, 0.5 * len(found[0])):
-            break
-    model, n_in, found, k = best
-    diag.update(candidate=k, dense_pass1=0 if found is None else len(found[0]), pass1_inliers=n_in)
-    if model is None:
-        return Matches.empty(0, 0) if found is None else Matches(found[0], found[1], found[2], 0, 0, diag)
-    lin = model[:2, :2] / (model[2, 2] if model.shape == (3, 3) else 1.0)
-    diag["coarse"] = {"rotation_deg": round(math.degrees(math.atan2(lin[1, 0], lin[0, 0])), 2),
-                      "scale": round(math.sqrt(abs(np.linalg.det(lin))), 4)}
-    monitor.report(0.7, "dense CFOG matching")
-    tx, rx, peak = dense(model, 4)
-    diag["dense_pass2"] = len(tx)
-    diag["dense_s"] = round(time.perf_counter() - t0 - diag["coarse_s"], 3)
-    monitor.report(1.0, "dense CFOG matching")
-    return Matches(tx, rx, peak, len(tx), len(rx), diag)
-
-
-# Decimated images are refined at full resolution with the same structural similarity.
-CFOG_REFINEMENT = RefineParams(template_px=64, search_px=4, min_ncc=0.1, points="grid", similarity="cfog")
-
-METHOD = register_method(Method(
-    name="lines-spectral", title="SAR onto optical (structural search + dense CFOG)",
-    summary="Exhaustive rotation/scale/shift search on CFOG structural descriptors, then CFOG template matching "
-            "on a grid, RANSAC and the chosen model. For SAR targets on optical references (and other "
-            "modality pairs, contrast inversion included). The thesis's line matcher is coarse='lines'.",
-    citation=CITATION + "; Ye et al. 2019, IEEE TGRS 57(11):9059-9070 (CFOG)", params_type=ProductParams,
-    match=match_product, refinement=CFOG_REFINEMENT))
-
 # The thesis's matches are few and imprecise: its transform comes from triplet clustering with a
 # 5 px tolerance, and 3 agreeing matches are accepted (the model's own minimum still applies).
-_THESIS = dict(robust="triplets", ransac_threshold_px=5.0, min_inliers=3, refinement=CFOG_REFINEMENT)
+_THESIS = dict(robust="triplets", ransac_threshold_px=5.0, min_inliers=3, refinement=STRUCTURAL_REFINEMENT)
 
 FAITHFUL = register_method(Method(
     name="lines-spectral-faithful", title="Line intersections + eigenvector/VSPM fusion, as in the thesis",

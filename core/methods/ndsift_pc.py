@@ -218,7 +218,7 @@ def describe(octaves, kp: Keypoints, octave: np.ndarray, level: np.ndarray) -> F
     return Features(keypoints, np.concatenate(desc_all), "l2")
 
 
-def match(target, reference, params: NdsiftParams, monitor: Monitor) -> Matches:
+def match(target, reference, params: NdsiftParams, monitor: Monitor, seed: int = 0) -> Matches:
     info_t, info_r = {}, {}
     ft = sar_features(target, params, info_t)
     monitor.report(0.45, "scale space, keypoints, descriptors")

@@ -29,7 +29,7 @@ class PhaseCorrelationParams:
         validate(self)
 
 
-def match(target, reference, params: PhaseCorrelationParams, monitor: Monitor) -> Matches:
+def match(target, reference, params: PhaseCorrelationParams, monitor: Monitor, seed: int = 0) -> Matches:
     """Global translation between the working images, as a grid of correspondences."""
     shift, response = phase_correlate(target.data, reference.data, target.valid, reference.valid)
     monitor.report(1.0, "phase correlation")

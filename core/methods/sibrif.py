@@ -168,7 +168,7 @@ def selective_vote(ft: Features, fr: Features, it, ir, angle_bin_deg: float = 10
     return near_a & near_s
 
 
-def match(target, reference, params: SibrifParams, monitor: Monitor) -> Matches:
+def match(target, reference, params: SibrifParams, monitor: Monitor, seed: int = 0) -> Matches:
     ft = sibrif_features(target, params)
     monitor.report(0.45, "edge keypoints and rBRIEF")
     fr = sibrif_features(reference, params)

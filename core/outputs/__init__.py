@@ -5,13 +5,15 @@ when all succeeded, so outputs appear whole or not at all.
 """
 from __future__ import annotations
 
+import dataclasses
 import os
 from dataclasses import dataclass, fields
 from typing import Dict, Optional
 
+from ..options import OutputOptions
 from ..progress import Monitor
 from .atomic import OutputSet, check_writable_folder
-from .geotiff import GRID_CHOICES, RESAMPLING_CHOICES, write_geotiff, write_vrt
+from .geotiff import write_geotiff, write_vrt
 from .gpkg import write_gcp_layer
 from .points import write_points
 from .report import write_report
@@ -38,11 +40,11 @@ class OutputPaths:
         return {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name)}
 
 
-def write_outputs(result, paths: OutputPaths, *, resampling: str = "bilinear", grid: str = "auto",
-                  resolution: Optional[float] = None, progress=None, is_canceled=None) -> Dict[str, str]:
+def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputOptions(), progress=None,
+                  is_canceled=None) -> Dict[str, str]:
     """Write the requested outputs of ``result``; returns {output name: absolute path}.
 
-    ``grid`` and ``resolution`` (reference map units) choose the GeoTIFF's pixel grid; see
+    ``output`` chooses the GeoTIFF's resampling and pixel grid; see
     :func:`hamta.core.outputs.geotiff.output_grid`.
     """
     monitor = Monitor(progress, is_canceled)
@@ -51,7 +53,7 @@ def write_outputs(result, paths: OutputPaths, *, resampling: str = "bilinear", g
         check_writable_folder(folder)
     with OutputSet() as out:
         if "geotiff" in wanted:
-            write_geotiff(out.temp_for(wanted["geotiff"]), result, resampling, grid, resolution,
+            write_geotiff(out.temp_for(wanted["geotiff"]), result, output.resampling, output.grid, output.resolution,
                           monitor.span(0.0, 0.9))
         if "vrt" in wanted:
             write_vrt(out.temp_for(wanted["vrt"]), result)
@@ -63,10 +65,10 @@ def write_outputs(result, paths: OutputPaths, *, resampling: str = "bilinear", g
         if "report" in wanted:
             report = result.to_report()
             report["outputs"] = wanted
-            report["output_options"] = {"resampling": resampling, "grid": grid, "resolution": resolution}
+            report["output_options"] = dataclasses.asdict(output)
             write_report(out.temp_for(wanted["report"]), report)
     monitor.report(1.0, "done")
     return wanted
 
 
-__all__ = ["OutputPaths", "write_outputs", "RESAMPLING_CHOICES", "GRID_CHOICES"]
+__all__ = ["OutputPaths", "write_outputs"]

@@ -31,10 +31,9 @@ from rasterio.windows import Window
 from ..coords import affine_to_matrix, as_xy, compose, pixel_to_map
 from ..errors import OutputError
 from ..estimation.models import local_jacobian
+from ..options import GRID, RESAMPLING
 from ..progress import Monitor
 
-RESAMPLING_CHOICES = ("nearest", "bilinear", "cubic", "cubicspline", "lanczos")
-GRID_CHOICES = ("auto", "reference", "native")
 _PLACEHOLDER_CRS = CRS.from_epsg(3857)  # lets GDAL warp between two grids of a raster without CRS
 _BLOCK_ROWS = 512
 _PROJECTIVE_GRID = 17
@@ -135,8 +134,7 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None):
     resolutions are within 10 %. ``resolution`` (reference map units) overrides the pixel size.
     In pixel mode the output is the reference pixel grid itself.
     """
-    if grid not in GRID_CHOICES:
-        raise ValueError(f"grid must be one of {GRID_CHOICES}, got {grid!r}")
+    GRID.check(grid)
     ref = result.reference
     if result.pixel_mode:
         return Affine.identity(), ref.width, ref.height, None
@@ -169,8 +167,7 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None):
 def write_geotiff(path: str, result, resampling: str = "bilinear", grid: str = "auto",
                   resolution: Optional[float] = None, monitor: Optional[Monitor] = None) -> None:
     """Warp every band of the target onto the output grid and write a tiled, compressed GeoTIFF."""
-    if resampling not in RESAMPLING_CHOICES:
-        raise ValueError(f"resampling must be one of {RESAMPLING_CHOICES}, got {resampling!r}")
+    RESAMPLING.check(resampling)
     monitor = monitor or Monitor()
     transform, width, height, crs = output_grid(result, grid, resolution)
     warp_crs = crs or _PLACEHOLDER_CRS

@@ -3,9 +3,10 @@ import json
 
 import pytest
 
-from hamta.core.cli import main
-from hamta.core.evaluation.bench import BenchConfig, summarise
-from hamta.core.evaluation.families import DEFAULT_FAMILIES, build_case, family_specs
+from hamta.bench.families import DEFAULT_FAMILIES, build_case, family_specs
+from hamta.bench.runner import BenchConfig
+from hamta.bench.tables import summarise
+from hamta.cli.main import main
 
 
 def test_quick_bench_runs_every_family_and_the_baselines_succeed_on_easy_cases(tmp_path, shared, capsys):

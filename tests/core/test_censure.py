@@ -3,8 +3,15 @@ import cv2
 import numpy as np
 import pytest
 
-from hamta.core.features.censure import (OCTAGONS, CensureDetector, OctagonSums, censure_keypoints,
-                                         censure_responses, octagon_area, octagon_mask)
+from hamta.core.features.censure import (
+    OCTAGONS,
+    CensureDetector,
+    OctagonSums,
+    censure_keypoints,
+    censure_responses,
+    octagon_area,
+    octagon_mask,
+)
 
 
 def test_filter_bank_is_table_1_of_the_paper():

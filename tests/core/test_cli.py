@@ -8,7 +8,7 @@ import sys
 import numpy as np
 import pytest
 
-from hamta.core.cli import main
+from hamta.cli.main import main
 from hamta.core.estimation.models import model_from_dict
 
 
@@ -47,6 +47,14 @@ def test_errors_exit_nonzero_with_a_message(tmp_path, demo_pair, capsys):
     rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--model", "wobbly",
                "--out", str(tmp_path / "o"), "--quiet"])
     assert rc == 2 and "unknown model" in capsys.readouterr().err
+
+
+def test_former_method_name_still_works(tmp_path, demo_pair, capsys):
+    out = tmp_path / "o"
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method",
+               "lines-spectral", "--param", "max_rotation_deg=20", "--out", str(out), "--quiet"])
+    assert rc == 0
+    assert json.loads((out / "report.json").read_text())["method"] == "cfog"
 
 
 def test_methods_lists_sift_with_parameters(capsys):

@@ -1,8 +1,14 @@
 import numpy as np
 from affine import Affine
 
-from hamta.core.coords import (apply_matrix, corner_to_opencv, map_to_pixel, matrix_corner_to_opencv,
-                               opencv_to_corner, pixel_to_map)
+from hamta.core.coords import (
+    apply_matrix,
+    corner_to_opencv,
+    map_to_pixel,
+    matrix_corner_to_opencv,
+    opencv_to_corner,
+    pixel_to_map,
+)
 
 
 def test_opencv_and_corner_conventions_differ_by_half_a_pixel():

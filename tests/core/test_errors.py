@@ -5,8 +5,15 @@ import numpy as np
 import pytest
 from affine import Affine
 
-from hamta.core import (GeoreferencingError, InputError, InsufficientMatchesError, NoOverlapError, RegisterOptions,
-                        RegistrationCanceled, register)
+from hamta.core import (
+    GeoreferencingError,
+    InputError,
+    InsufficientMatchesError,
+    NoOverlapError,
+    RegisterOptions,
+    RegistrationCanceled,
+    register,
+)
 
 UTM = dict(crs="EPSG:32633", transform=Affine(10, 0, 500000, 0, -10, 4000000))
 

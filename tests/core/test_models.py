@@ -2,8 +2,8 @@ import numpy as np
 import pytest
 
 from hamta.core.coords import apply_matrix
-from hamta.core.estimation.models import (MODEL_CHOICES, ThinPlateSplineModel, canonical_model, fit_model,
-                                          model_from_dict)
+from hamta.core.estimation.models import ThinPlateSplineModel, fit_model, model_from_dict
+from hamta.core.options import MODEL_CHOICES, canonical_model
 
 H = np.array([[0.92, -0.21, 31.0], [0.24, 0.97, -12.0], [2e-5, -1e-5, 1.0]])
 

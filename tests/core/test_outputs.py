@@ -1,19 +1,19 @@
 """Every output format: content, conventions, GDAL's agreement with the model, atomic writing."""
 import dataclasses
 import json
+import shutil
 import sqlite3
 import struct
 import subprocess
-import shutil
 
 import numpy as np
 import pytest
 import rasterio
 
-from hamta.core import OutputError, RegisterOptions, register
+from hamta.core import OutputError, OutputOptions, RegisterOptions, register
 from hamta.core.coords import pixel_to_map
-from hamta.core.estimation.models import MODEL_CHOICES
 from hamta.core.io.raster import open_raster
+from hamta.core.options import MODEL_CHOICES
 from hamta.core.outputs import OutputPaths, write_outputs
 from hamta.core.outputs.geotiff import write_model_vrt
 from hamta.core.outputs.points import HEADER, qgs_double, read_points
@@ -50,7 +50,7 @@ def test_points_file_layout_and_round_trip(tmp_path, results):
 
 
 def test_points_use_target_map_coordinates_when_the_target_is_georeferenced(tmp_path, landsat):
-    from hamta.core.evaluation.cases import reprojected_case
+    from hamta.bench.cases import reprojected_case
 
     case = reprojected_case(str(tmp_path), landsat, dst_crs="EPSG:32617", shift_px=(10.0, 5.0))
     res = register(case.target, case.reference, "sift")
@@ -118,7 +118,7 @@ def test_warped_raster_agrees_with_the_model(tmp_path, results, raster_writer, m
     ramp = raster_writer("ramp.tif", np.stack([cols, rows]).astype("float64"))
     res = dataclasses.replace(res, target=open_raster(ramp))
     out = tmp_path / "warped.tif"
-    write_outputs(res, OutputPaths(geotiff=str(out)), resampling="bilinear", resolution=8.0)
+    write_outputs(res, OutputPaths(geotiff=str(out)), output=OutputOptions(resampling="bilinear", resolution=8.0))
     with rasterio.open(out) as ds:
         data, tr = ds.read(), ds.transform
         assert ds.crs.to_epsg() == 32639

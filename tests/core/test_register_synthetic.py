@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
+from hamta.bench.cases import reprojected_case, similarity_case
 from hamta.core import RegisterOptions, register
-from hamta.core.evaluation.cases import reprojected_case, similarity_case
 
 SIMILARITY_CASES = [  # (angle deg, scale target px per reference px, shift reference px)
     (0.0, 1.0, (17.0, -9.0)),

@@ -5,9 +5,9 @@ import cv2
 import numpy as np
 import pytest
 
+from hamta.bench.families import CaseSpec, build_case, speckle
 from hamta.core import RegisterOptions, register
 from hamta.core.descriptors.sift_descriptor import descriptors, orientations
-from hamta.core.evaluation.families import CaseSpec, build_case, speckle
 from hamta.core.features.nonlinear import aos_step, contrast_factor, pm_conductance
 from hamta.core.features.phase_congruency import phase_congruency
 from hamta.core.features.roewa import roewa_gradient, roewa_magnitude
@@ -188,18 +188,21 @@ def test_refinement_grid_covers_the_footprint_whatever_the_scale():
 
 
 def test_a_failed_refinement_pass_falls_back_to_the_previous_one(easy_sar_case, monkeypatch):
-    import hamta.core.pipeline as pipeline
+    import dataclasses
 
-    real, calls = pipeline.refine_points, []
+    import hamta.core.refine as refine
+
+    real, calls = refine.refine_points, []
 
     def second_pass_is_garbage(model, points, *args):
         calls.append(len(points))
-        t, r, s = real(model, points, *args)
-        if len(calls) == 2:
-            t = np.random.default_rng(0).uniform(0, 400, t.shape)  # no consistent model
-        return t, r, s
+        found = real(model, points, *args)
+        if len(calls) == 2:  # no consistent model
+            garbage = np.random.default_rng(0).uniform(0, 400, found.target_px.shape)
+            found = dataclasses.replace(found, target_px=garbage)
+        return found
 
-    monkeypatch.setattr(pipeline, "refine_points", second_pass_is_garbage)
+    monkeypatch.setattr(refine, "refine_points", second_pass_is_garbage)
     result = register(easy_sar_case.target, easy_sar_case.reference, "ndsift-pc")
     assert len(calls) == 2 and result.stats["refined"]
     assert any("refinement pass 2" in n for n in result.notes)

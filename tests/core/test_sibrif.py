@@ -3,9 +3,9 @@ import cv2
 import numpy as np
 import pytest
 
+from hamta.bench.cases import similarity_case
 from hamta.core import RegisterOptions, register
 from hamta.core.descriptors.pca_sift import gradient_vectors, load_basis
-from hamta.core.evaluation.cases import similarity_case
 from hamta.core.features.rbrief import intensity_centroid_angle, rbrief_descriptors
 from hamta.core.matching.nearest import self_similar
 from hamta.core.methods.sibrif import SibrifFaithfulParams, SibrifParams, edge_image, selective_vote

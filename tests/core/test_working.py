@@ -4,8 +4,8 @@ import pytest
 import rasterio
 from affine import Affine
 
+from hamta.bench.cases import reprojected_case, similarity_case
 from hamta.core import RegisterOptions, register
-from hamta.core.evaluation.cases import reprojected_case, similarity_case
 from hamta.core.io.raster import open_raster, resolve_bands
 from hamta.core.io.working import prepare_working_images
 from hamta.core.outputs import OutputPaths, write_outputs

@@ -12,7 +12,6 @@ from hamta.core.outputs.report import read_report
 from hamta.processing.mapping import register_settings
 
 
-
 def _run(params, feedback=None):
     import processing
 
@@ -43,8 +42,7 @@ def test_rilbp_algorithm_runs(provider, demo_pair, tmp_path):
 
 def test_sar_algorithm_registers_a_speckled_pair(provider, shared, tmp_path):
     import processing
-
-    from hamta.core.evaluation.families import CaseSpec, build_case
+    from hamta.bench.families import CaseSpec, build_case
 
     spec = CaseSpec("speckle", "sar_L4_rot30", {"source": "sar", "looks": 4, "angle": 30, "scale": 1.0, "grain": 0.9})
     case = build_case(spec, str(tmp_path), 400, str(shared / "data"))
@@ -63,8 +61,7 @@ def test_sar_algorithm_registers_a_speckled_pair(provider, shared, tmp_path):
 
 def test_sar_optical_algorithm_registers_an_inverted_speckled_image(provider, shared, tmp_path):
     import processing
-
-    from hamta.core.evaluation.families import CaseSpec, build_case
+    from hamta.bench.families import CaseSpec, build_case
 
     spec = CaseSpec("multimodal", "landsat_sigmoid-invert", {"source": "landsat", "mapping": "sigmoid-invert"})
     case = build_case(spec, str(tmp_path), 512, str(shared / "data"))
@@ -75,10 +72,32 @@ def test_sar_optical_algorithm_registers_an_inverted_speckled_image(provider, sh
                   REPORT=str(tmp_path / "r.json"))
     res = processing.run("hamta:registersaroptical", params)
     report = read_report(res["REPORT"])
-    assert report["method"] == "lines-spectral" and res["N_GCPS"] >= 50
+    assert report["method"] == "cfog" and res["N_GCPS"] >= 50
     check = map_points_from_report(res["REPORT"], case.check_points)
     mapped = np.array([p["reference_px"] for p in check])
     assert np.sqrt(np.mean(np.sum((mapped - case.truth(case.check_points)) ** 2, axis=1))) < 1.0
+
+
+def test_sar_optical_dialog_shows_the_few_tuned_parameters_and_hides_the_rest(provider):
+    from qgis.core import QgsProcessingParameterDefinition as Definition
+
+    alg = provider.algorithm("registersaroptical")
+    method = [p for p in alg.parameterDefinitions() if p.name().startswith("P_")]
+    basic = {p.name() for p in method if not p.flags() & Definition.FlagAdvanced}
+    assert basic == {"P_UNITS", "P_MAX_ROTATION_DEG", "P_MAX_SCALE"}
+    assert len(method) <= 14 and "P_GGS_ALPHA" not in {p.name() for p in method}
+
+
+def test_enum_labels_follow_the_core_choices(provider):
+    from hamta.core.options import MODEL, RESAMPLING
+
+    alg = provider.algorithm("registersaroptical")
+    defs = {p.name(): p for p in alg.parameterDefinitions()}
+    assert defs["MODEL"].options() == [MODEL.labels[v] for v in MODEL.values]
+    assert defs["MODEL"].options()[defs["MODEL"].defaultValue()] == MODEL.labels["affine"]
+    assert defs["RESAMPLING"].options()[defs["RESAMPLING"].defaultValue()] == RESAMPLING.labels["bilinear"]
+    ndsift = {p.name(): p for p in provider.algorithm("registerndsift").parameterDefinitions()}
+    assert ndsift["MODEL"].options()[ndsift["MODEL"].defaultValue()] == MODEL.labels["similarity"]
 
 
 def test_every_method_algorithm_is_listed(provider):
@@ -90,13 +109,13 @@ def test_every_method_algorithm_is_listed(provider):
 
 
 def test_parameter_mapping_is_pure():
-    options, out = register_settings({"MODEL": 5, "RESAMPLING": 2, "GRID": 1, "REFINE": 2, "TARGET_BAND": 0,
-                                      "REFERENCE_BAND": 2, "SEED": 3, "OUTPUT": "/x/o.tif", "GCP_POINTS": ""},
-                                     "affine")
+    options, paths, output = register_settings({"MODEL": 5, "RESAMPLING": 2, "GRID": 1, "REFINE": 2,
+                                                "TARGET_BAND": 0, "REFERENCE_BAND": 2, "SEED": 3,
+                                                "OUTPUT": "/x/o.tif", "GCP_POINTS": ""})
     assert options.model == "tps" and options.refine == "off" and options.seed == 3
     assert options.target_band is None and options.reference_band == 2
-    assert out["resampling"] == "cubic" and out["grid"] == "reference"
-    assert out["paths"].geotiff == "/x/o.tif" and out["paths"].points is None
+    assert output.resampling == "cubic" and output.grid == "reference"
+    assert paths.geotiff == "/x/o.tif" and paths.points is None
 
 
 def test_processing_run_writes_outputs_that_load_as_layers(provider, demo_pair, tmp_path):

@@ -49,8 +49,8 @@ def aerial_case(folder: str, data_dir: str, angle: float = 25.0, reference_scale
 
 
 def _register(case, method):
-    from ...errors import HamtaError
-    from ...pipeline import register
+    from ...core.errors import HamtaError
+    from ...core.pipeline import register
 
     try:
         r = register(case.target, case.reference, method)

@@ -9,7 +9,7 @@ the paper could not report (it has no ground truth).
 """
 from __future__ import annotations
 
-from ..bench import median
+from ..stats import median
 from . import Reproduction
 
 METHODS = ("bfsift", "gss-sift", "ndss-sift", "ndsift-pc-faithful", "ndsift-pc", "sift")

@@ -19,7 +19,7 @@ from affine import Affine
 from rasterio.errors import NotGeoreferencedWarning
 from rasterio.warp import Resampling, calculate_default_transform, reproject
 
-from ..coords import apply_matrix, compose, map_to_pixel, pixel_to_map
+from ..core.coords import apply_matrix, compose, map_to_pixel, pixel_to_map
 from .synthetic import similarity_matrix, warp_to_target
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 from . import Reproduction
 
 METHODS = ("lines-eigen", "lines-vspm", "lines-spectral-faithful", "lines-spectral-faithful[fusion=cascade]",
-           "lines-spectral")
+           "cfog")
 PAPER = {"lines-eigen": "Data 1: 2/7 (28 %), Data 2: 2/4 (50 %)",
          "lines-vspm": "Data 1: 1/8 (12.5 %, printed 14 %), Data 2: 2/4 (50 %)",
          "lines-spectral-faithful": "Data 1: 5/8 (62.5 %), Data 2: 3/5 (60 %)"}

@@ -8,11 +8,11 @@ import warnings
 
 import numpy as np
 import rasterio
-from rasterio.errors import NotGeoreferencedWarning
 from affine import Affine
+from rasterio.errors import NotGeoreferencedWarning
 
-from .coords import apply_matrix
-from .evaluation.synthetic import make_landscape, similarity_matrix, warp_to_target
+from ..bench.synthetic import make_landscape, similarity_matrix, warp_to_target
+from ..core.coords import apply_matrix
 
 DEMO_CRS = "EPSG:32639"  # WGS 84 / UTM zone 39N
 DEMO_TRANSFORM = Affine(10.0, 0.0, 552000.0, 0.0, -10.0, 3620000.0)  # 10 m pixels

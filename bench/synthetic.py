@@ -11,7 +11,7 @@ import math
 import cv2
 import numpy as np
 
-from ..coords import matrix_corner_to_opencv
+from ..core.coords import matrix_corner_to_opencv
 
 
 def similarity_matrix(angle_deg: float, scale: float, target_shape, reference_shape, shift=(0.0, 0.0)) -> np.ndarray:

@@ -8,31 +8,8 @@ import sys
 import time
 from typing import List, Optional
 
-from .errors import HamtaError
-
-
-class ProgressBar:
-    """A one-line progress bar on stderr (plain percentage lines when stderr is not a terminal)."""
-
-    def __init__(self, enabled: bool = True, stream=None):
-        self.enabled = enabled
-        self.stream = stream or sys.stderr
-        self.tty = self.stream.isatty()
-        self.last = -1
-
-    def __call__(self, fraction: float, message: str = "") -> None:
-        if not self.enabled:
-            return
-        pct = int(round(100 * fraction))
-        if self.tty:
-            bar = "#" * (pct // 4) + "-" * (25 - pct // 4)
-            self.stream.write(f"\r[{bar}] {pct:3d}% {message:<24}")
-            if pct >= 100:
-                self.stream.write("\n")
-            self.stream.flush()
-        elif pct // 10 > self.last // 10 or pct == 100 and self.last != 100:
-            self.stream.write(f"{pct:3d}% {message}\n")
-        self.last = pct
+from ..core.errors import HamtaError
+from .progress import ProgressBar
 
 
 def _pairs(values: List[str]) -> dict:
@@ -46,22 +23,19 @@ def _pairs(values: List[str]) -> dict:
 
 
 def cmd_register(args) -> int:
-    from .outputs import OutputPaths, write_outputs
-    from .pipeline import RegisterOptions, register
+    from ..core import OutputOptions, RegisterOptions, run
+    from ..core.outputs import OutputPaths
+    from ..core.outputs.atomic import check_writable_folder
 
     options = RegisterOptions(model=args.model, max_working_pixels=args.max_working_pixels,
                               ransac_threshold_px=args.ransac_threshold, seed=args.seed, refine=args.refine,
                               max_gcps=args.max_gcps, target_georef=args.target_georef,
                               target_band=args.target_band, reference_band=args.reference_band)
-    paths = OutputPaths.in_folder(args.out, vrt=args.vrt)
-    from .outputs.atomic import check_writable_folder
-
+    output = OutputOptions(resampling=args.resampling, grid=args.grid)
     check_writable_folder(args.out)
-    bar = ProgressBar(not args.quiet)
-    result = register(args.target, args.reference, method=args.method, params=_pairs(args.param), options=options,
-                      progress=lambda f, m: bar(0.8 * f, m))
-    written = write_outputs(result, paths, resampling=args.resampling, grid=args.grid,
-                            progress=lambda f, m: bar(0.8 + 0.2 * f, m))
+    result, written = run(args.target, args.reference, OutputPaths.in_folder(args.out, vrt=args.vrt),
+                          method=args.method, params=_pairs(args.param), options=options, output=output,
+                          progress=ProgressBar(not args.quiet))
     s = result.stats
     print(f"model {result.model.kind}: {s['n_gcps']} GCPs from {s['n_matches']} matches; "
           f"RMSE {s['rmse_px']:.3f} px, RMS_LOO {_fmt(s['rms_loo_px'])} px (self-reported), "
@@ -76,7 +50,7 @@ def _fmt(v) -> str:
 
 
 def cmd_map_points(args) -> int:
-    from .mapping import map_points_from_report
+    from ..core.mapping import map_points_from_report
 
     if len(args.coords) % 2:
         raise SystemExit("hamta map-points: coordinates come in X Y pairs")
@@ -94,7 +68,7 @@ def cmd_map_points(args) -> int:
 def cmd_methods(args) -> int:
     import dataclasses
 
-    from .methods import all_methods
+    from ..core.methods import all_methods
 
     for m in all_methods().values():
         print(f"{m.name}  [{m.kind}]  {m.title}")
@@ -106,18 +80,16 @@ def cmd_methods(args) -> int:
 
 
 def cmd_demo(args) -> int:
+    from ..core import RegisterOptions, run
+    from ..core.outputs import OutputPaths
     from .demo import TARGET_SHAPE, check_point_error, make_demo_pair
-    from .outputs import OutputPaths, write_outputs
-    from .pipeline import RegisterOptions, register
 
     root = os.path.abspath(args.out)
     sample = make_demo_pair(os.path.join(root, "sample"))
-    bar = ProgressBar(not args.quiet)
     t0 = time.perf_counter()
-    result = register(sample["target"], sample["reference"], method=args.method,
-                      options=RegisterOptions(model="affine"), progress=lambda f, m: bar(0.8 * f, m))
-    written = write_outputs(result, OutputPaths.in_folder(os.path.join(root, "result"), vrt=True),
-                            progress=lambda f, m: bar(0.8 + 0.2 * f, m))
+    result, written = run(sample["target"], sample["reference"],
+                          OutputPaths.in_folder(os.path.join(root, "result"), vrt=True), method=args.method,
+                          options=RegisterOptions(model="affine"), progress=ProgressBar(not args.quiet))
     elapsed = time.perf_counter() - t0
     with open(sample["truth"]) as f:
         truth = json.load(f)
@@ -139,9 +111,10 @@ def cmd_demo(args) -> int:
 
 
 def cmd_bench(args) -> int:
-    from .evaluation.bench import BenchConfig, expand_sweep, run_bench, text_tables
-    from .evaluation.families import DEFAULT_FAMILIES
-    from .methods import all_methods
+    from ..bench.families import DEFAULT_FAMILIES
+    from ..bench.runner import BenchConfig, expand_sweep, run_bench
+    from ..bench.tables import text_tables
+    from ..core.methods import all_methods
 
     def split(text, sep=","):
         return tuple(x.strip() for x in text.split(sep) if x.strip())
@@ -160,7 +133,7 @@ def cmd_bench(args) -> int:
 
 
 def cmd_train_pca_sift(args) -> int:
-    from .descriptors.pca_sift import BASIS_PATH, save_basis, train_basis
+    from ..core.descriptors.pca_sift import BASIS_PATH, save_basis, train_basis
 
     mean, components, n = train_basis(args.images)
     out = args.out or BASIS_PATH
@@ -170,12 +143,9 @@ def cmd_train_pca_sift(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from .estimation.models import MODEL_CHOICES
-    from .io.working import TARGET_GEOREF_CHOICES
-    from .outputs import GRID_CHOICES, RESAMPLING_CHOICES
-    from .pipeline import REFINE_CHOICES, RegisterOptions
+    from ..core.options import GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF, OutputOptions, RegisterOptions
 
-    d = RegisterOptions()
+    d, o = RegisterOptions(), OutputOptions()
     p = argparse.ArgumentParser(prog="hamta", description="Automatic georeferencing and co-registration of rasters.")
     sub = p.add_subparsers(dest="command", required=True)
 
@@ -184,18 +154,18 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--target", required=True, help="raster to georeference")
     r.add_argument("--out", required=True, help="output folder (created if missing)")
     r.add_argument("--method", default="sift", help="matching method (see 'hamta methods'); default sift")
-    r.add_argument("--model", default=None, help=f"transform model: {', '.join(MODEL_CHOICES)}")
+    r.add_argument("--model", default=None, help=f"transform model: {', '.join(MODEL.values)}")
     r.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="method parameter")
-    r.add_argument("--resampling", default="bilinear", choices=RESAMPLING_CHOICES)
-    r.add_argument("--grid", default="auto", choices=GRID_CHOICES, help="output pixel grid")
+    r.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values)
+    r.add_argument("--grid", default=o.grid, choices=GRID.values, help="output pixel grid")
     r.add_argument("--vrt", action="store_true", help="also write gcps.vrt (target + GCPs, no resampling)")
     r.add_argument("--max-working-pixels", type=int, default=d.max_working_pixels)
     r.add_argument("--ransac-threshold", type=float, default=None,
                    help="working pixels (default: the method's, 3 for most)")
     r.add_argument("--seed", type=int, default=d.seed)
-    r.add_argument("--refine", default=d.refine, choices=REFINE_CHOICES)
+    r.add_argument("--refine", default=d.refine, choices=REFINE.values)
     r.add_argument("--max-gcps", type=int, default=d.max_gcps)
-    r.add_argument("--target-georef", default=d.target_georef, choices=TARGET_GEOREF_CHOICES)
+    r.add_argument("--target-georef", default=d.target_georef, choices=TARGET_GEOREF.values)
     r.add_argument("--target-band", type=int, default=None)
     r.add_argument("--reference-band", type=int, default=None)
     r.add_argument("--quiet", action="store_true", help="no progress bar")

@@ -19,15 +19,15 @@ import cv2
 import numpy as np
 from scipy.spatial import cKDTree
 
-from ...descriptors.cslbp import CslbpParams, cslbp_descriptors
-from ...descriptors.rilbp import RilbpParams, rilbp_descriptors
-from ...features.censure import CensureDetector, censure_keypoints
-from ...features.patches import dominant_orientation, sample_patches
-from ...features.sift import sift_descriptors
-from ...io.raster import open_raster, read_image, resolve_bands
-from ...matching.nearest import match_features
-from ...preprocess.normalize import stretch_to_uint8
-from ...types import Features
+from ...core.descriptors.cslbp import CslbpParams, cslbp_descriptors
+from ...core.descriptors.rilbp import RilbpParams, rilbp_descriptors
+from ...core.features.censure import CensureDetector, censure_keypoints
+from ...core.features.patches import dominant_orientation, sample_patches
+from ...core.features.sift import sift_descriptors
+from ...core.io.raster import open_raster, read_image, resolve_bands
+from ...core.matching.nearest import match_features
+from ...core.preprocess.normalize import stretch_to_uint8
+from ...core.types import Features
 from . import Reproduction
 
 TOLERANCE_PX = 3.0
@@ -47,7 +47,7 @@ def describe(u8, xy, support, name):
         p = RilbpParams()
         return rilbp_descriptors(sample_patches(u8, xy, support, p.radius, p.margin), p)
     if name == "RILBP product":
-        from ...methods.rilbp import RilbpMethodParams
+        from ...core.methods.rilbp import RilbpMethodParams
 
         mp = RilbpMethodParams()
         p = mp.descriptor()

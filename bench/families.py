@@ -19,8 +19,8 @@ import cv2
 import numpy as np
 from affine import Affine
 
-from ..coords import apply_matrix, compose
-from ..preprocess.sar import lee_filter
+from ..core.coords import apply_matrix, compose
+from ..core.preprocess.sar import lee_filter
 from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
 from .synthetic import make_landscape
 

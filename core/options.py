@@ -1,0 +1,189 @@
+"""Every choice a user makes about a registration and its outputs, in one place.
+
+Each choice is a :class:`Choice`: its allowed values with an English label each, keyed by value,
+and its default. Front ends (CLI, Processing, benchmark) build their menus from these and map
+back by value. The order of a choice's values is part of the ``qgis_process`` interface
+(Processing enums are passed as indexes), so new values are appended, never inserted.
+
+:func:`resolve_options` fills what a user left open with the chosen method's defaults; it is
+the only place method defaults are resolved.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Mapping, Optional, Tuple
+
+
+@dataclass(frozen=True)
+class Choice:
+    """The allowed values of one option (in interface order) with their labels and default."""
+
+    name: str
+    labels: Mapping[str, str]
+    default: Optional[str]
+    aliases: Mapping[str, str] = None
+
+    @property
+    def values(self) -> Tuple[str, ...]:
+        return tuple(self.labels)
+
+    def check(self, value: str) -> str:
+        """``value`` in canonical spelling (aliases and case accepted); ``ValueError`` otherwise."""
+        key = str(value).lower()
+        key = (self.aliases or {}).get(key, key)
+        if key not in self.labels:
+            raise ValueError(f"unknown {self.name} {value!r}; choose one of {', '.join(self.values)}")
+        return key
+
+    def index(self, value: str) -> int:
+        return self.values.index(self.check(value))
+
+    def at(self, index: int) -> str:
+        """The value at an enum ``index`` (as Processing passes it)."""
+        if not 0 <= int(index) < len(self.values):
+            raise ValueError(f"{self.name} index {index} is out of range 0..{len(self.values) - 1}")
+        return self.values[int(index)]
+
+
+MODEL = Choice("model", {
+    "similarity": "Similarity (Helmert)",
+    "affine": "Affine (polynomial 1)",
+    "projective": "Projective",
+    "polynomial-2": "Polynomial 2",
+    "polynomial-3": "Polynomial 3",
+    "tps": "Thin plate spline",
+}, "affine", aliases={"helmert": "similarity", "polynomial-1": "affine", "poly1": "affine", "poly2": "polynomial-2",
+                      "poly3": "polynomial-3", "homography": "projective", "thin-plate-spline": "tps"})
+
+RESAMPLING = Choice("resampling", {
+    "nearest": "Nearest neighbour",
+    "bilinear": "Bilinear",
+    "cubic": "Cubic",
+    "cubicspline": "Cubic B-spline",
+    "lanczos": "Lanczos",
+}, "bilinear")
+
+GRID = Choice("grid", {
+    "auto": "Automatic",
+    "reference": "Reference pixel grid",
+    "native": "Target's native resolution",
+}, "auto")
+
+REFINE = Choice("refine", {
+    "auto": "Automatic (when images were decimated)",
+    "on": "Always",
+    "off": "Never",
+}, "auto")
+
+TARGET_GEOREF = Choice("target_georef", {
+    "auto": "Use when it overlaps the reference",
+    "use": "Always use (fail otherwise)",
+    "ignore": "Ignore",
+}, "auto")
+
+ROBUST = Choice("robust", {
+    "ransac": "Seeded LO-RANSAC",
+    "none": "None: fit every correspondence",
+    "triplets": "Cluster the transforms of match triplets",
+}, None)
+
+MODEL_CHOICES = MODEL.values
+RESAMPLING_CHOICES = RESAMPLING.values
+GRID_CHOICES = GRID.values
+REFINE_CHOICES = REFINE.values
+TARGET_GEOREF_CHOICES = TARGET_GEOREF.values
+ROBUST_CHOICES = ROBUST.values
+
+
+def canonical_model(name: str) -> str:
+    """Validate a model name (QGIS-style aliases accepted) and return its canonical spelling."""
+    return MODEL.check(name)
+
+
+@dataclass(frozen=True)
+class RegisterOptions:
+    """Settings shared by every method.
+
+    Attributes
+    ----------
+    model : str, optional
+        Transform model (see :data:`MODEL`); None = the method's default.
+    max_working_pixels : int
+        Pixel budget of each working image; bounds memory and matching time.
+    ransac_threshold_px : float, optional
+        Inlier tolerance in working reference pixels; None = the method's default.
+    seed : int
+        Seed of every random choice (RANSAC, in the pipeline and inside methods), for reproducible runs.
+    refine : {'auto', 'on', 'off'}
+        Full-resolution refinement; 'auto' refines when a working image was decimated or the method
+        always refines (see :class:`hamta.core.methods.Method`).
+    max_gcps : int
+        Well-spread inliers kept as GCPs; the model is fitted on exactly these.
+    min_inliers : int, optional
+        Fewest agreeing correspondences accepted as a registration (at least the model minimum + 2);
+        None = the method's default.
+    robust : {'ransac', 'none', 'triplets'}, optional
+        Outlier rejection before the fit; 'none' fits every correspondence (as some papers do);
+        'triplets' clusters the affine transforms of all match triples (spec 003's future work);
+        None = the method's default.
+    target_georef : {'auto', 'use', 'ignore'}
+        Whether the target's own georeferencing is used as a starting point.
+    target_band, reference_band : int, optional
+        1-based band to match; None = luminance of RGB images, else band 1.
+    """
+
+    model: Optional[str] = None
+    max_working_pixels: int = 4_000_000
+    ransac_threshold_px: Optional[float] = None
+    seed: int = 0
+    refine: str = REFINE.default
+    max_gcps: int = 500
+    min_inliers: Optional[int] = None
+    robust: Optional[str] = None
+    target_georef: str = TARGET_GEOREF.default
+    target_band: Optional[int] = None
+    reference_band: Optional[int] = None
+
+    def __post_init__(self):
+        if self.model is not None:
+            object.__setattr__(self, "model", MODEL.check(self.model))
+        REFINE.check(self.refine)
+        TARGET_GEOREF.check(self.target_georef)
+        if self.robust is not None:
+            ROBUST.check(self.robust)
+        if self.max_working_pixels < 4096:
+            raise ValueError("max_working_pixels must be at least 4096")
+        if self.ransac_threshold_px is not None and self.ransac_threshold_px <= 0:
+            raise ValueError("ransac_threshold_px must be positive")
+
+
+def resolve_options(options: RegisterOptions, method) -> RegisterOptions:
+    """``options`` with every setting left open (None) taken from ``method``'s defaults."""
+    return replace(options, model=options.model or method.default_model,
+                   ransac_threshold_px=options.ransac_threshold_px or method.ransac_threshold_px,
+                   min_inliers=options.min_inliers or method.min_inliers, robust=options.robust or method.robust)
+
+
+@dataclass(frozen=True)
+class OutputOptions:
+    """How the georeferenced raster is written.
+
+    Attributes
+    ----------
+    resampling : str
+        See :data:`RESAMPLING`.
+    grid : str
+        Output pixel grid, see :data:`GRID` and :func:`hamta.core.outputs.geotiff.output_grid`.
+    resolution : float, optional
+        Output pixel size in reference map units (overrides ``grid``'s).
+    """
+
+    resampling: str = RESAMPLING.default
+    grid: str = GRID.default
+    resolution: Optional[float] = None
+
+    def __post_init__(self):
+        RESAMPLING.check(self.resampling)
+        GRID.check(self.grid)
+        if self.resolution is not None and not self.resolution > 0:
+            raise ValueError(f"resolution must be positive, got {self.resolution}")

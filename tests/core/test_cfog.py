@@ -1,0 +1,84 @@
+"""The cross-modal product ``cfog``: CFOG descriptors, the structural search, dense matching, end to end."""
+import cv2
+import numpy as np
+import pytest
+
+from hamta.bench.families import CaseSpec, build_case
+from hamta.bench.synthetic import make_landscape
+from hamta.core import RegisterOptions, register
+from hamta.core.area.cfog import cfog, ncc_surface, peak_offset
+from hamta.core.area.multimodal import apply, dense_matches, search_similarity, similarity
+
+
+def _landscape():
+    rgb = make_landscape((400, 400), seed=11).astype(np.float32)
+    return rgb.mean(axis=0)
+
+
+def test_cfog_is_unchanged_by_contrast_inversion_and_locates_a_shift():
+    img = _landscape()
+    d, di = cfog(img), cfog(255.0 - img)
+    assert np.abs(d - di).max() < 1e-4
+    tmpl = d[:, 100:164, 120:184]
+    area = d[:, 97:171, 112:186]  # offset 0 would put the template's corner at (117, 102)
+    offset, peak = peak_offset(ncc_surface(area, tmpl), 5)
+    assert peak > 0.99 and np.allclose(offset, [3, -2], atol=0.05)
+
+
+def test_search_and_dense_matching_register_an_inverted_rotated_scaled_image():
+    ref = _landscape()
+    valid = np.ones(ref.shape, bool)
+    truth = similarity(17.0, 1.2, (150, 150), (200, 190))  # target px -> reference px
+    inv = np.linalg.inv(np.vstack([truth, [0, 0, 1]]))[:2]
+    m = inv.copy()
+    m[:, 2] += m[:, :2].sum(axis=1) * 0.5 - 0.5
+    tgt = cv2.warpAffine(255.0 - ref, m, (300, 300), flags=cv2.INTER_LINEAR)
+    tgt = np.sqrt(tgt ** 2 * np.random.default_rng(0).gamma(4, 0.25, tgt.shape)).astype(np.float32)
+    tvalid = cv2.warpAffine(np.ones(ref.shape, np.uint8), m, (300, 300), flags=cv2.INTER_NEAREST) > 0
+    candidates, tried = search_similarity(tgt, tvalid, ref, valid)
+    grid = np.array([[x, y] for x in (40, 150, 260) for y in (40, 150, 260)], float)
+    close = [np.abs(apply(c["affine"], grid) - apply(truth, grid)).max() < 8.0 for c in candidates]
+    assert len(tried) == 13 * 11 and any(close[:3])  # the method checks the first three densely
+    tx, rx, _ = dense_matches(tgt, tvalid, ref, valid, candidates[close.index(True)]["affine"], search=12)
+    err = np.linalg.norm(apply(truth, tx) - rx, axis=1)
+    assert len(tx) > 30 and np.median(err) < 0.5
+
+
+@pytest.mark.parametrize("mapping", ["invert", "fold"])
+def test_product_registers_the_multimodal_proxy(tmp_path, shared, mapping):
+    spec = CaseSpec("multimodal", f"landsat_{mapping}", {"source": "landsat", "mapping": mapping})
+    case = build_case(spec, str(tmp_path), 512, str(shared / "data"))
+    result = register(case.target, case.reference, "cfog")
+    assert np.sqrt(np.mean(case.errors(result.model) ** 2)) < 1.0
+    assert result.stats["n_gcps"] >= 50 and "coarse" in result.diagnostics
+
+
+def test_product_registers_the_real_sar_optical_pair_within_3_px(tmp_path, shared):
+    case = build_case(CaseSpec("pairs", "sar_optical", {"pair": "sar_optical"}), str(tmp_path), 0,
+                      str(shared / "data"))
+    result = register(case.target, case.reference, "cfog")
+    assert np.sqrt(np.mean(case.errors(result.model) ** 2)) <= 3.0
+
+
+def test_decimated_multimodal_pair_is_refined_with_cfog(tmp_path, shared):
+    spec = CaseSpec("multimodal", "landsat_sqrt-invert", {"source": "landsat", "mapping": "sqrt-invert"})
+    case = build_case(spec, str(tmp_path), 700, str(shared / "data"))
+    options = RegisterOptions(max_working_pixels=120_000)
+    result = register(case.target, case.reference, "cfog", options=options)
+    assert result.stats["refined"] and result.stats["n_refined"] >= 50
+    assert np.sqrt(np.mean(case.errors(result.model) ** 2)) < 1.0
+
+
+def test_dense_model_is_a_homography_only_where_perspective_needs_it():
+    from hamta.core.methods.cfog import _fit
+
+    rng = np.random.default_rng(8)
+    ref = rng.uniform(0, 600, (300, 2))
+    h = np.array([[1.0, 0.05, 10.0], [0.02, 0.95, -5.0], [4e-4, -3e-4, 1.0]])  # strong perspective
+    tgt = apply(np.linalg.inv(h), ref) + rng.normal(0, 0.3, ref.shape)
+    model, _ = _fit((tgt, ref), seed=0)
+    assert model.shape == (3, 3) and np.abs(apply(model, tgt) - ref).max() < 2.0
+    affine = similarity(12.0, 1.1, (300, 300), (310, 290))
+    tgt = apply(np.linalg.inv(np.vstack([affine, [0, 0, 1]])), ref) + rng.normal(0, 0.3, ref.shape)
+    model, n = _fit((tgt, ref), seed=0)
+    assert model.shape == (2, 3) and n >= 290

@@ -1,0 +1,75 @@
+"""The package layout's rules: the engine imports nothing outside ``core`` (QGIS and Qt least of all),
+and the version has one source."""
+import ast
+import pathlib
+import re
+import subprocess
+import sys
+
+from hamta.core.result import versions
+from hamta.core.version import __version__
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+
+
+def _imports(path: pathlib.Path):
+    """(absolute module name, line) of every import in ``path``, relative ones resolved."""
+    package = ["hamta"] + list(path.relative_to(REPO).parent.parts)
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            yield from ((a.name, node.lineno) for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            base = package[: len(package) - node.level + 1] if node.level else []
+            module = ".".join(base + ([node.module] if node.module else []))
+            if node.module is None:  # from . import x
+                yield from ((f"{module}.{a.name}", node.lineno) for a in node.names)
+            else:
+                yield module, node.lineno
+
+
+def test_core_imports_nothing_outside_core():
+    offenders = []
+    for path in (REPO / "core").rglob("*.py"):
+        for module, line in _imports(path):
+            top = module.split(".")[0]
+            outside = module.startswith("hamta.") and not module.startswith("hamta.core") or module == "hamta"
+            if outside or top in ("qgis", "PyQt5", "PyQt6", "osgeo"):
+                offenders.append(f"{path.relative_to(REPO)}:{line} imports {module}")
+    assert not offenders, "\n".join(offenders)
+
+
+BLOCK = """
+import importlib.abc, pkgutil, sys
+
+class Block(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in ("qgis", "PyQt5"):
+            raise ImportError(f"{name} is blocked in this test")
+        return None
+
+sys.meta_path.insert(0, Block())
+import hamta.core
+for info in pkgutil.walk_packages(hamta.core.__path__, "hamta.core."):
+    __import__(info.name)
+from hamta.core.methods import all_methods
+assert len(all_methods()) > 10
+assert not [m for m in sys.modules if m.split(".")[0] in ("qgis", "PyQt5")]
+print("ok")
+"""
+
+
+def test_core_imports_with_qgis_and_qt_unimportable():
+    proc = subprocess.run([sys.executable, "-P", "-c", BLOCK], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0 and proc.stdout.strip() == "ok", proc.stderr
+
+
+def test_the_version_has_one_source():
+    metadata = (REPO / "metadata.txt").read_text(encoding="utf-8")
+    assert re.search(r"^version=(.+)$", metadata, re.M).group(1).strip() == __version__
+    assert versions()["hamta"] == __version__
+    import hamta
+
+    assert hamta.__version__ == __version__
+    from importlib.metadata import version
+
+    assert version("hamta") == __version__
