@@ -8,18 +8,9 @@ A reproduction with ``units = None`` is computed from the benchmark's own rows o
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Callable, Tuple
+from .base import Reproduction
 
-
-@dataclass(frozen=True)
-class Reproduction:
-    name: str
-    methods: Tuple[str, ...]
-    families: Tuple[str, ...]
-    units: Callable
-    run_unit: Callable
-    tables: Callable
+__all__ = ["Reproduction", "all_reproductions"]
 
 
 def all_reproductions():

@@ -8,7 +8,7 @@ eye), and whether a transform followed. The product is listed for comparison.
 """
 from __future__ import annotations
 
-from . import Reproduction
+from .base import Reproduction
 
 METHODS = ("lines-eigen", "lines-vspm", "lines-spectral-faithful", "lines-spectral-faithful[fusion=cascade]",
            "cfog")

@@ -28,7 +28,7 @@ from ...core.io.raster import open_raster, read_image, resolve_bands
 from ...core.matching.nearest import match_features
 from ...core.preprocess.normalize import stretch_to_uint8
 from ...core.types import Features
-from . import Reproduction
+from .base import Reproduction
 
 TOLERANCE_PX = 3.0
 DESCRIPTORS = ("RILBP", "CS-LBP", "SIFT", "RILBP product")

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..cases import Canvas, warped_case
 from ..families import load_source, target_matrix
-from . import Reproduction
+from .base import Reproduction
 
 TABLE1_METHODS = ("sift", "pca-sift", "orb", "sibrif", "sibrif-faithful")
 SWEEP_METHODS = ("sift", "sibrif", "sibrif-faithful")

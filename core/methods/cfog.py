@@ -32,9 +32,9 @@ from ..preprocess.sar import SAR_UNITS
 from ..progress import Monitor
 from ..refine import STRUCTURAL_REFINEMENT
 from ..types import Matches
-from . import Method, param, register_method, validate
 from .lines_spectral import CITATION as THESIS
 from .lines_spectral import LinesParams, match_lines, sar_image
+from .registry import Method, param, register_method, validate
 
 
 @dataclass(frozen=True)

@@ -30,7 +30,7 @@ from ..preprocess.sar import SAR_UNITS, lee_filter, normalised_amplitude
 from ..progress import Monitor
 from ..refine import STRUCTURAL_REFINEMENT
 from ..types import Matches
-from . import Method, param, register_method, validate
+from .registry import Method, param, register_method, validate
 
 CITATION = ("Gholami 2018, Automatic registration of SAR images onto optical images (M.Sc. thesis, Shahrood "
             "University of Technology), with Shapiro & Brady 1992 and Sui et al. 2015, IEEE TGRS 53(11):6058-6072 "

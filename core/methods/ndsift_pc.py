@@ -34,7 +34,7 @@ from ..preprocess.sar import SAR_UNITS, log_scaled, normalised_amplitude
 from ..progress import Monitor
 from ..refine import RefineParams
 from ..types import Features, Keypoints, Matches
-from . import Method, param, register_method, validate
+from .registry import Method, param, register_method, validate
 
 CITATION = ("Fan et al. 2015, SAR image registration using phase congruency and nonlinear diffusion-based SIFT, "
             "IEEE GRSL 12(3):562-566, doi:10.1109/LGRS.2014.2351396 (spec 002)")

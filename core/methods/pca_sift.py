@@ -14,7 +14,7 @@ from ..features.sift import SiftDetector, sift_keypoints
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
 from ..types import Features, Keypoints
-from . import Method, match_with, param, register_method, validate
+from .registry import Method, match_with, param, register_method, validate
 
 
 @dataclass(frozen=True)

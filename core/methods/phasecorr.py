@@ -15,7 +15,7 @@ import numpy as np
 from ..area.phase_correlation import phase_correlate
 from ..progress import Monitor
 from ..types import Matches
-from . import Method, param, register_method, validate
+from .registry import Method, param, register_method, validate
 
 
 @dataclass(frozen=True)

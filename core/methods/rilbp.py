@@ -26,7 +26,7 @@ from ..features.patches import sample_patches
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import stretch_to_uint8
 from ..types import Features
-from . import Method, match_with, param, register_method, validate
+from .registry import Method, match_with, param, register_method, validate
 
 CITATION = ("Sedaghat & Mohammadi 2019, Rotation invariant local binary pattern descriptor for remote sensing "
             "image matching, JGIT 7(2):223-239 (spec 000); CenSurE: Agrawal et al. 2008, ECCV")

@@ -15,7 +15,7 @@ from ..descriptors.cslbp import CslbpParams, cslbp_descriptors
 from ..features.patches import dominant_orientation, sample_patches
 from ..features.sift import sift_descriptors
 from ..types import Features, Keypoints
-from . import Method, match_with, param, register_method
+from .registry import Method, match_with, param, register_method
 from .rilbp import CITATION, CensureRegionParams, censure_regions
 
 

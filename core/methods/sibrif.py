@@ -30,7 +30,7 @@ from ..preprocess.edges import sobel_edge_image
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
 from ..progress import Monitor
 from ..types import Features, Keypoints, Matches
-from . import Method, param, register_method, validate
+from .registry import Method, param, register_method, validate
 
 CITATION = ("Safdari, Moallem & Sattari, Robust and fast aerial and satellite image matching based on selective "
             "scale and rotation (SIBRIF, in Persian; spec 001)")

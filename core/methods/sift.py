@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from ..features.sift import SiftDetector, sift_features
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
-from . import Method, match_with, param, register_method, validate
+from .registry import Method, match_with, param, register_method, validate
 
 
 @dataclass(frozen=True)

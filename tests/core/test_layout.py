@@ -73,3 +73,56 @@ def test_the_version_has_one_source():
     from importlib.metadata import version
 
     assert version("hamta") == __version__
+
+
+def _module_name(path: pathlib.Path) -> str:
+    parts = ["hamta"] + list(path.relative_to(REPO).with_suffix("").parts)
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def test_no_import_cycles():
+    """No cycle among the package's modules, counting imports inside functions too."""
+    graph = {}
+    for top in ("core", "cli", "bench", "processing", "plugin"):
+        for path in (REPO / top).rglob("*.py"):
+            tree = ast.parse(path.read_text(), str(path))
+            path_imports = []
+            for node in ast.walk(tree):
+                path_imports.extend(_resolve(node, path))
+            name = _module_name(path)
+            graph[name] = {m for m in path_imports if m.startswith("hamta.")}
+    known = set(graph)
+    graph = {m: {_owner(d, known) for d in deps} - {None, m} for m, deps in graph.items()}
+    state, cycles = {}, []
+
+    def visit(m, stack):
+        state[m] = "open"
+        for d in graph.get(m, ()):
+            if state.get(d) == "open":
+                cycles.append(stack[stack.index(d):] + [d])
+            elif d not in state:
+                visit(d, stack + [d])
+        state[m] = "done"
+
+    for m in sorted(graph):
+        if m not in state:
+            visit(m, [m])
+    assert not cycles, cycles
+
+
+def _resolve(node, path):
+    package = ["hamta"] + list(path.relative_to(REPO).parent.parts)
+    if isinstance(node, ast.Import):
+        return [a.name for a in node.names]
+    if isinstance(node, ast.ImportFrom):
+        base = package[: len(package) - node.level + 1] if node.level else []
+        module = ".".join(base + ([node.module] if node.module else []))
+        return [f"{module}.{a.name}" for a in node.names] + [module]
+    return []
+
+
+def _owner(name, known):
+    """The longest known module that ``name`` is or lies in (``pkg.mod.attr`` -> ``pkg.mod``)."""
+    while name and name not in known:
+        name = name.rpartition(".")[0]
+    return name or None
