@@ -21,11 +21,15 @@ from affine import Affine
 
 from ..core.coords import apply_matrix, compose
 from ..core.preprocess.sar import lee_filter
+from . import multimodal_set, trust
 from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
 from .synthetic import make_landscape
 
-FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "large")
-DEFAULT_FAMILIES = FAMILIES[:-1]  # 'large' (a Sentinel-2-sized scene, ~1 GB of files) runs on request
+FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
+            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large",)
+# The real multimodal set (600 pairs) and 'large' (a Sentinel-2-sized scene, ~1 GB of files) run on request.
+DEFAULT_FAMILIES = FAMILIES[:10]
+GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
                 "sar": "pairs/sar-optical_1.jpg"}
 
@@ -47,8 +51,8 @@ class CaseSpec:
 
 
 def default_data_dir() -> str:
-    here = os.path.dirname(os.path.abspath(__file__))
-    repo = os.path.dirname(os.path.dirname(here))
+    """``$HAMTA_SHARED_DATA``, else ``shared/data`` beside the repository (or the installed package)."""
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     return os.environ.get("HAMTA_SHARED_DATA", os.path.join(os.path.dirname(repo), "shared", "data"))
 
 
@@ -239,11 +243,26 @@ def _pairs(quick):
             CaseSpec("pairs", "sar_optical", {"pair": "sar_optical"})]
 
 
+def _crops(quick):
+    return [CaseSpec("crops", name, {"source": "landsat", "kind": name}) for name in trust.crop_names(quick)]
+
+
+def _should_fail(quick):
+    return [CaseSpec("should-fail", name, {"source": "landsat", "kind": name})
+            for name in trust.should_fail_names(quick)]
+
+
+def _multimodal_set(family):
+    return lambda quick: [CaseSpec(family, str(i), {"pair": i}) for i in multimodal_set.pair_ids(quick)]
+
+
 def _large(quick):
     return [CaseSpec("large", "s2_10980px", {"source": "landscape", "size": 10980, "shift": (37, -21)})]
 
 
-_SPECS = {"rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
+_SPECS = {"crops": _crops, "should-fail": _should_fail,
+          **{f: _multimodal_set(f) for f in multimodal_set.CATEGORIES},
+          "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large}
 
 
@@ -258,6 +277,8 @@ def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
     name = f"{spec.family}_{spec.name}"
     if spec.family == "pairs":
         return _pair_case(p["pair"], data_dir)
+    if spec.family in multimodal_set.CATEGORIES:
+        return multimodal_set.build(spec.family, p["pair"], data_dir)
     if spec.family == "large":
         return _large_case(folder, name, p["size"], p["shift"])
     # Speckle lives at the sensor's resolution cell: an upsampled SAR image would carry it too fine.
@@ -267,6 +288,10 @@ def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
     info = {"family": spec.family, **p}
     if spec.family == "georeferenced":
         return reprojected_case(folder, None, dst_crs=p["crs"], shift_px=p["shift"], name=name, canvas=canvas)
+    if spec.family == "should-fail":
+        return trust.build_should_fail(folder, name, p["kind"], canvas, spec.seed)
+    if spec.family == "crops":
+        return trust.build_crop(folder, name, p["kind"], canvas, spec.seed)
     if spec.family == "overlap":
         return _overlap_case(folder, name, canvas, p["fraction"], rng, info)
     shift = tuple(rng.uniform(-20, 20, 2))
@@ -359,6 +384,8 @@ def available(family: str, data_dir: str) -> bool:
     """Whether a family can run (the real pairs need the data folder)."""
     if family == "pairs":
         return os.path.exists(os.path.join(data_dir, "pairs", "ground_truth.json"))
+    if family in multimodal_set.CATEGORIES:
+        return multimodal_set.available(data_dir, family)
     return True
 
 

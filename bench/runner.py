@@ -18,14 +18,22 @@ import time
 from dataclasses import asdict, dataclass
 from typing import Callable, List, Optional, Sequence
 
-import numpy as np
-
 from ..core import RegisterOptions, run
+from ..core.auto import AUTO
 from ..core.errors import HamtaError
 from ..core.methods import all_methods
 from ..core.outputs.report import clean
 from ..core.result import versions
-from .families import DEFAULT_FAMILIES, FAMILIES, CaseSpec, available, build_case, default_data_dir, family_specs
+from .families import (
+    DEFAULT_FAMILIES,
+    FAMILIES,
+    GROUPS,
+    CaseSpec,
+    available,
+    build_case,
+    default_data_dir,
+    family_specs,
+)
 from .memory import PeakRss
 from .metrics import judge
 from .tables import BASELINE, markdown, summarise
@@ -47,13 +55,14 @@ class BenchConfig:
     def resolved(self) -> "BenchConfig":
         methods = [m for m in (self.methods or default_methods(self.quick)) if m != BASELINE]
         methods.insert(0, BASELINE)  # the baseline always runs, first, so ratios have a reference
-        unknown = [f for f in self.families if f not in FAMILIES]
+        families = [g for f in self.families for g in GROUPS.get(f, (f,))]
+        unknown = [f for f in families if f not in FAMILIES]
         if unknown:
             raise ValueError(f"unknown famil{'y' if len(unknown) == 1 else 'ies'} {', '.join(unknown)}; "
-                             f"choose from {', '.join(FAMILIES)}")
+                             f"choose from {', '.join(FAMILIES + tuple(GROUPS))}")
         for m in methods:
             parse_variant(m)  # raises on unknown methods, parameters or options
-        return BenchConfig(tuple(methods), tuple(self.families), self.size, self.quick, max(1, self.jobs),
+        return BenchConfig(tuple(methods), tuple(families), self.size, self.quick, max(1, self.jobs),
                            os.path.abspath(self.out_dir), self.data_dir or default_data_dir(), self.reproductions)
 
 
@@ -61,10 +70,10 @@ QUICK_BASELINES = ("sift", "orb", "phasecorr")
 
 
 def default_methods(quick: bool) -> list:
-    """Every method; for a quick run the product methods and the generic baselines only (the
-    faithful versions and the papers' own baselines belong to full runs)."""
-    return [name for name, m in all_methods().items()
-            if not quick or m.kind == "method" or name in QUICK_BASELINES]
+    """'auto' and every method; for a quick run the product methods and the generic baselines only
+    (the faithful versions and the papers' own baselines belong to full runs)."""
+    return [AUTO] + [name for name, m in all_methods().items()
+                     if not quick or m.kind == "method" or name in QUICK_BASELINES]
 
 
 def parse_variant(text: str):
@@ -74,11 +83,11 @@ def parse_variant(text: str):
     ``ransac_threshold_px``); a variant is benchmarked as its own row.
     """
     name, _, rest = text.partition("[")
-    if name not in all_methods():
-        raise ValueError(f"unknown method {name!r}; available: {', '.join(all_methods())}")
+    if name not in all_methods() and name != AUTO:
+        raise ValueError(f"unknown method {name!r}; available: {AUTO}, {', '.join(all_methods())}")
     params, options = {}, {}
     option_fields = {f.name for f in dataclasses.fields(RegisterOptions)}
-    method_fields = {f.name for f in dataclasses.fields(all_methods()[name].params_type)}
+    method_fields = set() if name == AUTO else {f.name for f in dataclasses.fields(all_methods()[name].params_type)}
     for item in filter(None, rest.rstrip("]").split(",")):
         key, _, value = item.partition("=")
         key = key.strip()
@@ -88,7 +97,8 @@ def parse_variant(text: str):
             options[key] = _number_or_text(value.strip())
         else:
             raise ValueError(f"{key!r} is neither a parameter of {name!r} nor a registration option")
-    all_methods()[name].make_params(params)
+    if name != AUTO:
+        all_methods()[name].make_params(params)
     return name, params, options
 
 
@@ -118,18 +128,18 @@ def run_case(spec: CaseSpec, config: BenchConfig) -> List[dict]:
     rows = []
     for method in config.methods:
         name, params, overrides = parse_variant(method)
-        options = RegisterOptions(**dict({"model": spec.model}, **overrides))
+        options = RegisterOptions(**dict({"model": spec.model, "tolerance_px": case.tolerance_px}, **overrides))
         result, error = None, None
         with PeakRss() as mem:
             t0 = time.perf_counter()
             try:
                 result, _ = run(case.target, case.reference, method=name, params=params, options=options)
-            except (HamtaError, ValueError, np.linalg.LinAlgError) as exc:
+            except (HamtaError, ValueError, ArithmeticError) as exc:
                 error = exc
         wall = time.perf_counter() - t0
         row = {"family": spec.family, "case": spec.name, "method": method, "model": spec.model,
                "tolerance_px": case.tolerance_px, "n_check_points": int(len(case.check_points)),
-               "time_s": result.timings["total"] if result is not None else wall,
+               "time_s": wall,
                "timings_s": result.timings if result is not None else {"total": wall},
                "peak_rss_mb": round(mem.peak, 1),
                "diagnostics": result.diagnostics if result is not None else {}}

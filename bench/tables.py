@@ -14,7 +14,7 @@ def summarise(rows: List[dict], methods: Sequence[str]) -> Dict[str, Dict[str, d
     precision, time, peak memory, and the median per-case time ratio to the SIFT baseline."""
     out: Dict[str, Dict[str, dict]] = {}
     baseline = {(r["family"], r["case"]): r["time_s"] for r in rows if r["method"] == BASELINE}
-    difficulty = {(r["family"], r["case"]): (r["rmse_cp"] if r["success"] else float("inf"))
+    difficulty = {(r["family"], r["case"]): ((r["rmse_cp"] or 0.0) if r["success"] else float("inf"))
                   for r in rows if r["method"] == BASELINE}
     for fam in dict.fromkeys(r["family"] for r in rows):
         out[fam] = {}
@@ -37,13 +37,18 @@ def summarise(rows: List[dict], methods: Sequence[str]) -> Dict[str, Dict[str, d
                 "median_time_s": median([r["time_s"] for r in rs]),
                 "time_ratio_to_sift": 1.0 if m == BASELINE else median(ratios),
                 "median_peak_rss_mb": median([r["peak_rss_mb"] for r in rs]),
+                "n_verified_right": sum(bool(r.get("verified")) and r["success"] for r in rs),
+                "n_false_verified": sum(bool(r.get("false_verified")) for r in rs),
+                "n_false_flagged": sum(bool(r.get("false_flagged")) for r in rs),
             }
     return out
 
 
-COLUMNS = [("method", "method"), ("success", "success"), ("hard", "hard 1/3"), ("median_rmse_cp", "RMSE_cp med"),
-           ("p90_rmse_cp", "RMSE_cp p90"), ("median_ncm", "NCM med"), ("median_precision", "precision med"),
-           ("median_time_s", "time med (s)"), ("time_ratio_to_sift", "time / SIFT"), ("median_peak_rss_mb", "peak MB")]
+COLUMNS = [("method", "method"), ("success", "success"), ("verified", "right+verified"),
+           ("false_verified", "wrong verified"), ("false_flagged", "right flagged"), ("hard", "hard 1/3"),
+           ("median_rmse_cp", "RMSE_cp med"), ("p90_rmse_cp", "RMSE_cp p90"), ("median_ncm", "NCM med"),
+           ("median_precision", "precision med"), ("median_time_s", "time med (s)"),
+           ("time_ratio_to_sift", "time / SIFT"), ("median_peak_rss_mb", "peak MB")]
 
 
 def _cells(method: str, s: dict) -> List[str]:
@@ -51,6 +56,7 @@ def _cells(method: str, s: dict) -> List[str]:
         return "–" if v is None or (isinstance(v, float) and math.isnan(v)) else format(v, fmt)
 
     return [method, f"{s['n_success']}/{s['n_cases']} ({100 * s['success_rate']:.0f}%)",
+            f"{s.get('n_verified_right', 0)}", f"{s.get('n_false_verified', 0)}", f"{s.get('n_false_flagged', 0)}",
             f"{100 * s.get('hardest_third_success', 0):.0f}%", num(s["median_rmse_cp"], ".3f"),
             num(s["p90_rmse_cp"], ".3f"), num(s["median_ncm"], ".0f"),
             num(s["median_precision"], ".2f"), num(s["median_time_s"], ".2f"), num(s["time_ratio_to_sift"], ".2f"),
@@ -92,10 +98,13 @@ def markdown(report: dict) -> str:
            f"size {cfg['size']} px, quick={cfg['quick']}, jobs={cfg['jobs']}, methods: {', '.join(cfg['methods'])}; "
            f"{len(report['cases'])} registrations in {meta['duration_s']} s on {meta['machine']['cpus']} CPUs; "
            f"hamta {meta['versions']['hamta']}, OpenCV {meta['versions']['opencv']}, GDAL {meta['versions']['gdal']}.",
-           "", "Success: check-point RMSE ≤ 3 px (real pairs: their own tolerance). RMSE_cp statistics are over "
-           "successful cases only. NCM: returned matches within 3 px of the truth. time / SIFT: median per-case "
-           "ratio to the SIFT baseline in the same run. hard 1/3: success on the third of the family's cases "
-           "where SIFT's error is largest.", ""]
+           "", "Success: the returned mapping's check-point RMSE ≤ 3 px (real pairs and the multimodal set: their "
+           "own tolerance; should-fail cases: no verified result). right+verified: successes that the independent "
+           "check also verified (what a user gets by default); wrong verified: confident wrong answers (verified "
+           "beyond the tolerance; the goal is 0); right flagged: successes left unverified. RMSE_cp statistics are "
+           "over successful cases only. NCM: returned matches within 3 px of the truth. time / SIFT: median "
+           "per-case ratio to the SIFT baseline in the same run. hard 1/3: success on the third of the family's "
+           "cases where SIFT's error is largest.", ""]
     out.extend(f"> {n}" for n in meta["notes"])
     for fam, per_method in report["summary"].items():
         n = next(iter(per_method.values()))["n_cases"]

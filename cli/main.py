@@ -11,6 +11,13 @@ from typing import List, Optional
 from ..core.errors import HamtaError
 from .progress import ProgressBar
 
+# Exit codes (documented in the README).
+EXIT_OK = 0  # registered, and the independent check verified the result
+EXIT_ERROR = 1  # bad input or a registration that could not be done (the message says why)
+EXIT_USAGE = 2  # bad command line or parameter
+EXIT_UNVERIFIED = 3  # a model was found but not verified: no georeferenced output unless --accept-unverified
+EXIT_CANCELED = 130  # interrupted (Ctrl-C); nothing was written
+
 
 def _pairs(values: List[str]) -> dict:
     out = {}
@@ -23,26 +30,48 @@ def _pairs(values: List[str]) -> dict:
 
 
 def cmd_register(args) -> int:
-    from ..core import OutputOptions, RegisterOptions, run
+    from ..core import OutputOptions, RegisterOptions, UnverifiedResult, run
     from ..core.outputs import OutputPaths
     from ..core.outputs.atomic import check_writable_folder
 
     options = RegisterOptions(model=args.model, max_working_pixels=args.max_working_pixels,
                               ransac_threshold_px=args.ransac_threshold, seed=args.seed, refine=args.refine,
                               max_gcps=args.max_gcps, target_georef=args.target_georef,
-                              target_band=args.target_band, reference_band=args.reference_band)
+                              target_band=args.target_band, reference_band=args.reference_band,
+                              tolerance_px=args.tolerance, auto_budget_s=args.auto_budget)
     output = OutputOptions(resampling=args.resampling, grid=args.grid)
     check_writable_folder(args.out)
-    result, written = run(args.target, args.reference, OutputPaths.in_folder(args.out, vrt=args.vrt),
-                          method=args.method, params=_pairs(args.param), options=options, output=output,
-                          progress=ProgressBar(not args.quiet))
+    try:
+        result, written = run(args.target, args.reference, OutputPaths.in_folder(args.out, vrt=args.vrt),
+                              method=args.method, params=_pairs(args.param), options=options, output=output,
+                              accept_unverified=args.accept_unverified, progress=ProgressBar(not args.quiet))
+    except UnverifiedResult as exc:
+        print_result(exc.result, exc.written)
+        print(f"hamta: {exc}", file=sys.stderr)
+        return EXIT_UNVERIFIED
+    print_result(result, written)
+    return EXIT_OK if result.verified else EXIT_UNVERIFIED
+
+
+def print_result(result, written) -> None:
+    """What the run found: the attempts of 'auto', the verdict first, then the self-reported fit."""
+    from ..core.outputs.tags import verdict_text
+
+    for a in (result.auto or {}).get("attempts", []):
+        mark = "*" if a.get("accepted") else " "
+        print(f"{mark} tried {a['method']}{_params(a['params'])}: {a['outcome']} ({a['time_s']:.1f} s) - {a['reason']}")
+    print(f"result: {verdict_text(result)}")
     s = result.stats
-    print(f"model {result.model.kind}: {s['n_gcps']} GCPs from {s['n_matches']} matches; "
-          f"RMSE {s['rmse_px']:.3f} px, RMS_LOO {_fmt(s['rms_loo_px'])} px (self-reported), "
-          f"{result.timings['total']:.2f} s")
+    print(f"method {result.method}, model {result.model.kind}: {s['n_gcps']} GCPs from {s['n_matches']} matches; "
+          f"self-reported RMSE {s['rmse_px']:.3f} px, RMS_LOO {_fmt(s['rms_loo_px'])} px; "
+          f"{result.timings.get('auto_total', result.timings['total']):.2f} s")
     for name, path in written.items():
         print(f"{name:8s} {path}")
-    return 0
+
+
+def _params(params: dict) -> str:
+    return "" if not params else "[" + ",".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
+                                               for k, v in params.items()) + "]"
 
 
 def _fmt(v) -> str:
@@ -153,7 +182,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--reference", required=True, help="georeferenced reference raster (its CRS is the map)")
     r.add_argument("--target", required=True, help="raster to georeference")
     r.add_argument("--out", required=True, help="output folder (created if missing)")
-    r.add_argument("--method", default="sift", help="matching method (see 'hamta methods'); default sift")
+    r.add_argument("--method", default="auto",
+                   help="matching method (see 'hamta methods'); default auto: methods from fast to robust until one's "
+                        "result verifies")
     r.add_argument("--model", default=None, help=f"transform model: {', '.join(MODEL.values)}")
     r.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="method parameter")
     r.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values)
@@ -168,6 +199,13 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--target-georef", default=d.target_georef, choices=TARGET_GEOREF.values)
     r.add_argument("--target-band", type=int, default=None)
     r.add_argument("--reference-band", type=int, default=None)
+    r.add_argument("--tolerance", type=float, default=d.tolerance_px,
+                   help=f"accuracy asked for, reference px: a result is verified only when the independent check "
+                        f"bounds its error within this (default {d.tolerance_px:g})")
+    r.add_argument("--accept-unverified", action="store_true",
+                   help="write the outputs even when the result is not verified (the verdict is in every output)")
+    r.add_argument("--auto-budget", type=float, default=d.auto_budget_s,
+                   help=f"seconds after which 'auto' starts no further method (default {d.auto_budget_s:g})")
     r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=cmd_register)
 
@@ -213,12 +251,15 @@ def main(argv: Optional[List[str]] = None) -> int:
     args = parser.parse_args(argv)
     try:
         return args.func(args)
+    except KeyboardInterrupt:
+        print("hamta: interrupted; nothing was written", file=sys.stderr)
+        return EXIT_CANCELED
     except HamtaError as exc:
         print(f"hamta: error: {exc}", file=sys.stderr)
-        return 1
+        return EXIT_ERROR
     except (ValueError, argparse.ArgumentTypeError) as exc:
         print(f"hamta: error: {exc}", file=sys.stderr)
-        return 2
+        return EXIT_USAGE
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
-"""Hamta's engine: raster IO, matching, estimation and outputs. Never imports QGIS or anything outside ``core``."""
+"""Hamta's engine: raster IO, matching, estimation, verification and outputs. Never imports QGIS or
+anything outside ``core``."""
 from .errors import (
                      GeoreferencingError,
                      HamtaError,
@@ -7,6 +8,7 @@ from .errors import (
                      NoOverlapError,
                      OutputError,
                      RegistrationCanceled,
+                     UnverifiedResult,
 )
 from .options import OutputOptions, RegisterOptions
 from .pipeline import register
@@ -16,4 +18,4 @@ from .version import __version__
 
 __all__ = ["register", "run", "RegisterOptions", "OutputOptions", "RegistrationResult", "HamtaError", "InputError",
            "NoOverlapError", "GeoreferencingError", "InsufficientMatchesError", "OutputError", "RegistrationCanceled",
-           "__version__"]
+           "UnverifiedResult", "__version__"]

@@ -37,3 +37,14 @@ class OutputError(HamtaError, OSError):
 
 class RegistrationCanceled(HamtaError):
     """The caller asked to stop; nothing was written."""
+
+
+class UnverifiedResult(HamtaError):
+    """A model was found, but the independent check did not confirm it, so no georeferenced output
+    was written (only the report, when one was asked for). ``result`` holds everything found;
+    ``written`` what was written."""
+
+    def __init__(self, message: str, result, written=None):
+        super().__init__(message)
+        self.result = result
+        self.written = dict(written or {})

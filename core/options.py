@@ -130,6 +130,11 @@ class RegisterOptions:
         Whether the target's own georeferencing is used as a starting point.
     target_band, reference_band : int, optional
         1-based band to match; None = luminance of RGB images, else band 1.
+    tolerance_px : float
+        The accuracy asked for, in reference pixels: a result is verified only when the independent
+        check bounds its error within this (see :mod:`hamta.core.verify`).
+    auto_budget_s : float
+        With method 'auto', no further method starts once this many seconds are spent.
     """
 
     model: Optional[str] = None
@@ -143,6 +148,8 @@ class RegisterOptions:
     target_georef: str = TARGET_GEOREF.default
     target_band: Optional[int] = None
     reference_band: Optional[int] = None
+    tolerance_px: float = 3.0
+    auto_budget_s: float = 120.0
 
     def __post_init__(self):
         if self.model is not None:
@@ -155,6 +162,10 @@ class RegisterOptions:
             raise ValueError("max_working_pixels must be at least 4096")
         if self.ransac_threshold_px is not None and self.ransac_threshold_px <= 0:
             raise ValueError("ransac_threshold_px must be positive")
+        if not self.tolerance_px > 0:
+            raise ValueError(f"tolerance_px must be positive, got {self.tolerance_px}")
+        if not self.auto_budget_s >= 0:
+            raise ValueError(f"auto_budget_s must be zero or more, got {self.auto_budget_s}")
 
 
 def resolve_options(options: RegisterOptions, method) -> RegisterOptions:

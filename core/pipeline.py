@@ -4,29 +4,33 @@ Data flow (pixels are corner-convention, see :mod:`hamta.core.coords`): open bot
 plan the overlap and read working images -> the method matches them (working pixels) -> the
 correspondences become full-resolution target/reference pixel pairs -> outlier rejection with a
 linear model -> optional full-resolution refinement -> the requested model is fitted on
-well-spread inliers, which become the GCPs.
+well-spread inliers, which become the GCPs -> an independent check of the model against the
+pixels (:mod:`hamta.core.verify`) gives the verdict.
 """
 from __future__ import annotations
 
 import dataclasses
-from typing import Optional
+from dataclasses import dataclass
+from typing import Optional, Tuple
 
+from .auto import AUTO, register_auto
 from .coords import pixel_to_map
 from .estimation.framed import CrsFrame
 from .estimation.robust import RobustRules, final_fit, robust_linear
-from .io.raster import open_raster, resolve_bands
-from .io.working import Plan, prepare_working_images
+from .io.raster import RasterInfo, open_raster, resolve_bands
+from .io.working import Plan, WorkingImage, prepare_working_images
 from .methods import get_method
 from .options import RegisterOptions, resolve_options
 from .progress import Clock, Monitor
 from .refine import refine_estimate
 from .result import RegistrationResult, make_gcps, make_stats, params_dict
 from .types import Correspondences
+from .verify import VerifyParams, verify
 
 
-def register(target, reference, method: str = "sift", params=None, options: RegisterOptions = RegisterOptions(),
+def register(target, reference, method: str = AUTO, params=None, options: RegisterOptions = RegisterOptions(),
              progress=None, is_canceled=None) -> RegistrationResult:
-    """Register the ``target`` raster onto the ``reference`` raster.
+    """Register the ``target`` raster onto the ``reference`` raster, and verify the result.
 
     Parameters
     ----------
@@ -34,9 +38,10 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
         Raster files. The reference defines the map (its CRS and geotransform), or, without
         georeferencing, its pixel grid is the map.
     method : str
-        A name from :func:`hamta.core.methods.all_methods`.
+        'auto' (methods from fast to robust until one's result verifies, see :mod:`hamta.core.auto`)
+        or a name from :func:`hamta.core.methods.all_methods`.
     params : mapping or the method's parameter dataclass, optional
-        Method parameters; missing ones take their documented defaults.
+        Method parameters; missing ones take their documented defaults (not with 'auto').
     options : RegisterOptions
         Settings left open (None) take the method's defaults.
     progress : callable(fraction, message), optional
@@ -45,51 +50,88 @@ def register(target, reference, method: str = "sift", params=None, options: Regi
     Returns
     -------
     RegistrationResult
-        Nothing is written; see :func:`hamta.core.run.run`.
+        Nothing is written; see :func:`hamta.core.run.run`. ``result.verification`` says whether
+        the result verified; an unverified result is returned too (front ends decide).
 
     Raises
     ------
     HamtaError
         Subclasses name the file and the problem (missing input, no overlap, too few matches...).
     """
-    monitor, clock = Monitor(progress, is_canceled), Clock()
-    spec = get_method(method)
-    params = spec.make_params(params)
-    options = resolve_options(options, spec)
+    monitor = Monitor(progress, is_canceled)
+    inputs = read_inputs(target, reference, options, monitor.span(0.0, 0.1))
+    rest = monitor.span(0.1, 1.0)
+    if method == AUTO:
+        if params:
+            raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
+        return register_auto(lambda name, p, mon: match_and_fit(inputs, name, p, options, mon), options, rest)
+    return match_and_fit(inputs, method, params, options, rest)
+
+
+@dataclass(frozen=True, eq=False)
+class Inputs:
+    """Both rasters, opened and read at working resolution once per registration (``auto``'s
+    attempts share them). ``timings`` holds the 'open' and 'read' stages."""
+
+    target: RasterInfo
+    reference: RasterInfo
+    target_bands: Tuple[int, ...]
+    reference_bands: Tuple[int, ...]
+    target_image: WorkingImage
+    reference_image: WorkingImage
+    plan: Plan
+    timings: dict
+
+
+def read_inputs(target, reference, options: RegisterOptions, monitor: Monitor) -> Inputs:
+    """Open both rasters, choose their bands, plan the overlap and read the working images."""
+    clock = Clock()
     tgt_info, ref_info = open_raster(target, "target"), open_raster(reference, "reference")
     bands = resolve_bands(tgt_info, options.target_band), resolve_bands(ref_info, options.reference_band)
     clock.lap("open")
-    monitor.report(0.02, "reading")
-
+    monitor.report(0.2, "reading")
     tgt, ref, plan = prepare_working_images(tgt_info, ref_info, target_bands=bands[0], reference_bands=bands[1],
                                             max_pixels=options.max_working_pixels,
                                             target_georef=options.target_georef)
     clock.lap("read")
-    monitor.report(0.1, "matching")
+    monitor.report(1.0, "reading")
+    return Inputs(tgt_info, ref_info, bands[0], bands[1], tgt, ref, plan, clock.laps)
 
-    matches = spec.match(tgt, ref, params, monitor.span(0.1, 0.7), seed=options.seed)
+
+def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions, monitor: Monitor
+                  ) -> RegistrationResult:
+    """Match the working images with ``method``, fit and refine the model, and verify it."""
+    clock = Clock()
+    spec = get_method(method)
+    params = spec.make_params(params)
+    options = resolve_options(options, spec)
+    tgt, ref = inputs.target_image, inputs.reference_image
+    matches = spec.match(tgt, ref, params, monitor.span(0.0, 0.65), seed=options.seed)
     clock.lap("match")
-    rules = RobustRules.for_run(options.model, options, spec.name, tgt_info.path)
+    rules = RobustRules.for_run(options.model, options, spec.name, inputs.target.path)
     threshold = options.ransac_threshold_px * ref.source_px_per_working_px
     first = robust_linear(Correspondences.from_matches(matches, tgt, ref), threshold, rules)
     clock.lap("estimate")
-    monitor.report(0.75, "refining")
+    monitor.report(0.7, "refining")
 
     estimate, notes = refine_estimate(first, spec, options.refine, options.ransac_threshold_px, tgt, ref, rules,
-                                      monitor.span(0.75, 0.9))
+                                      monitor.span(0.7, 0.85))
     clock.lap("refine")
-    monitor.report(0.9, "fitting")
-
-    fit = final_fit(options.model, estimate, options.max_gcps, crs_frame(plan, tgt_info, ref_info))
+    monitor.report(0.85, "fitting")
+    fit = final_fit(options.model, estimate, options.max_gcps, crs_frame(inputs.plan, inputs.target, inputs.reference))
     clock.lap("fit")
+    verification = verify(fit.model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands,
+                          VerifyParams(tolerance_px=options.tolerance_px), monitor.span(0.85, 1.0))
+    clock.lap("verify")
+    ref_info = inputs.reference
     to_map = (lambda xy: xy) if not ref_info.georeferenced else (lambda xy: pixel_to_map(ref_info.transform, xy))
-    result = RegistrationResult(
+    timings = dict(inputs.timings, **clock.laps)
+    timings["total"] = round(sum(timings.values()), 4)
+    return RegistrationResult(
         method=spec.name, params=params_dict(params), options=dataclasses.asdict(options), model=fit.model,
-        target=tgt_info, reference=ref_info, plan=plan, gcps=make_gcps(fit, to_map),
-        stats=make_stats(matches, first.points, fit), timings=clock.as_dict(), notes=list(plan.notes) + notes,
-        diagnostics=dict(matches.diagnostics or {}), correspondences=first.points)
-    monitor.report(1.0, "done")
-    return result
+        target=inputs.target, reference=ref_info, plan=inputs.plan, gcps=make_gcps(fit, to_map),
+        stats=make_stats(matches, first.points, fit), timings=timings, notes=list(inputs.plan.notes) + notes,
+        diagnostics=dict(matches.diagnostics or {}), correspondences=first.points, verification=verification)
 
 
 def crs_frame(plan: Plan, target, reference) -> Optional[CrsFrame]:

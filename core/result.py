@@ -13,9 +13,10 @@ from .estimation.robust import FinalFit
 from .io.raster import RasterInfo
 from .io.working import Plan
 from .types import Correspondences, Matches
+from .verify import Verification
 from .version import __version__
 
-REPORT_SCHEMA_VERSION = 1
+REPORT_SCHEMA_VERSION = 2
 
 
 @dataclass(frozen=True)
@@ -60,6 +61,13 @@ class RegistrationResult:
     notes: List[str] = field(default_factory=list)
     diagnostics: dict = field(default_factory=dict)
     correspondences: Optional[Correspondences] = None
+    verification: Optional[Verification] = None
+    auto: Optional[dict] = None
+
+    @property
+    def verified(self) -> bool:
+        """True when the independent check confirmed the result (see :mod:`hamta.core.verify`)."""
+        return self.verification is not None and self.verification.verified
 
     @property
     def pixel_mode(self) -> bool:
@@ -100,6 +108,8 @@ class RegistrationResult:
             "timings_s": self.timings,
             "notes": list(self.notes),
             "diagnostics": self.diagnostics,
+            "quality": None if self.verification is None else self.verification.to_dict(),
+            "auto": self.auto,
             "versions": versions(),
         }
 
@@ -107,6 +117,7 @@ class RegistrationResult:
 def _raster_dict(info: RasterInfo) -> dict:
     return {"path": info.path, "width": info.width, "height": info.height, "count": info.count,
             "dtype": info.dtype, "crs": info.crs.to_wkt() if info.crs else None,
+            "collar": None if info.collar is None else {"value": info.collar, "share": round(info.collar_share, 4)},
             "transform": gdal_coefficients(info.transform), "georeferencing": info.georef_source}
 
 

@@ -1,14 +1,19 @@
 """``run``: register, then write the outputs, as one job with one progress range.
 
 The CLI, the Processing algorithms and the benchmark all call this; registering takes the first
-80 % of the progress range and writing the rest.
+80 % of the progress range and writing the rest. A result the independent check did not verify
+gets no georeferenced output unless the caller accepts unverified results: only its report is
+written (when asked for), and :class:`UnverifiedResult` says why.
 """
 from __future__ import annotations
 
 from typing import Dict, Optional, Tuple
 
+from .auto import AUTO
+from .errors import UnverifiedResult
 from .options import OutputOptions, RegisterOptions
 from .outputs import OutputPaths, write_outputs
+from .outputs.tags import verdict_text
 from .pipeline import register
 from .progress import Monitor
 from .result import RegistrationResult
@@ -16,15 +21,20 @@ from .result import RegistrationResult
 REGISTER_SHARE = 0.8
 
 
-def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str = "sift", params=None,
-        options: RegisterOptions = RegisterOptions(), output: OutputOptions = OutputOptions(), progress=None,
-        is_canceled=None) -> Tuple[RegistrationResult, Dict[str, str]]:
+def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str = AUTO, params=None,
+        options: RegisterOptions = RegisterOptions(), output: OutputOptions = OutputOptions(),
+        accept_unverified: bool = False, progress=None, is_canceled=None) -> Tuple[RegistrationResult, Dict[str, str]]:
     """Register ``target`` onto ``reference`` (see :func:`hamta.core.register`) and write ``paths``.
 
     Returns
     -------
     (RegistrationResult, dict)
         The result and {output name: absolute path} of what was written (empty without ``paths``).
+
+    Raises
+    ------
+    UnverifiedResult
+        The result did not verify and ``accept_unverified`` is False (its report is written).
     """
     monitor = Monitor(progress, is_canceled)
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
@@ -34,6 +44,13 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     if share == 1.0:
         return result, {}
     stage = monitor.span(share, 1.0)
+    if not result.verified and not accept_unverified:
+        written = {}
+        if paths.report:
+            written = write_outputs(result, OutputPaths(report=paths.report), output=output, is_canceled=is_canceled)
+        raise UnverifiedResult(f"The registration of '{result.target.path}' is {verdict_text(result)}. No "
+                               "georeferenced output was written; accept unverified results to write it anyway.",
+                               result, written)
     written = write_outputs(result, paths, output=output, progress=lambda f, m: stage.report(f, m),
                             is_canceled=is_canceled)
     return result, written

@@ -57,6 +57,7 @@ def register_settings(values: Mapping[str, Any]):
         target_georef=_enum(values, "TARGET_GEOREF"),
         target_band=values.get("TARGET_BAND") or None,
         reference_band=values.get("REFERENCE_BAND") or None,
+        tolerance_px=float(values.get("TOLERANCE") or d.tolerance_px),
     )
     paths = OutputPaths(geotiff=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,
                         gpkg=values.get("GCP_LAYER") or None, vrt=values.get("GCP_VRT") or None,

@@ -8,6 +8,7 @@ from qgis.PyQt.QtCore import QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
 from .register_algorithm import (
+    RegisterAutoAlgorithm,
     RegisterNdsiftAlgorithm,
     RegisterRilbpAlgorithm,
     RegisterSarOpticalAlgorithm,
@@ -32,8 +33,8 @@ class HamtaProvider(QgsProcessingProvider):
         return QIcon(ICON)
 
     def loadAlgorithms(self):
-        for alg in (RegisterSiftAlgorithm(), RegisterRilbpAlgorithm(), RegisterSibrifAlgorithm(),
-                    RegisterNdsiftAlgorithm(), RegisterSarOpticalAlgorithm()):
+        for alg in (RegisterAutoAlgorithm(), RegisterSiftAlgorithm(), RegisterRilbpAlgorithm(),
+                    RegisterSibrifAlgorithm(), RegisterNdsiftAlgorithm(), RegisterSarOpticalAlgorithm()):
             self.addAlgorithm(alg)
 
     def supportedOutputRasterLayerExtensions(self):

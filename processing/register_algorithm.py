@@ -8,6 +8,7 @@ from qgis.core import (
     QgsProcessingAlgorithm,
     QgsProcessingException,
     QgsProcessingOutputNumber,
+    QgsProcessingOutputString,
     QgsProcessingParameterBand,
     QgsProcessingParameterBoolean,
     QgsProcessingParameterDefinition,
@@ -21,7 +22,8 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP, QCoreApplication
 
-from ..core import RegisterOptions, run
+from ..core import RegisterOptions, UnverifiedResult, run
+from ..core.auto import AUTO
 from ..core.errors import HamtaError, RegistrationCanceled
 from ..core.methods import get_method
 from ..core.options import resolve_options
@@ -48,7 +50,12 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
     MODEL, RESAMPLING, GRID = "MODEL", "RESAMPLING", "GRID"
     MAX_WORKING_PIXELS, RANSAC_THRESHOLD, SEED = "MAX_WORKING_PIXELS", "RANSAC_THRESHOLD", "SEED"
     REFINE, MAX_GCPS, TARGET_GEOREF = "REFINE", "MAX_GCPS", "TARGET_GEOREF"
+    TOLERANCE, KEEP_UNVERIFIED = "TOLERANCE", "KEEP_UNVERIFIED"
     OUTPUT, GCP_LAYER, GCP_POINTS, GCP_VRT, REPORT = "OUTPUT", "GCP_LAYER", "GCP_POINTS", "GCP_VRT", "REPORT"
+
+    def method(self):
+        """The registered method this algorithm runs (None for 'auto', which chooses among them)."""
+        return None if self.METHOD == AUTO else get_method(self.METHOD)
 
     def tr(self, text):
         return QCoreApplication.translate(_CONTEXT, text)
@@ -81,12 +88,18 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
                                           defaultValue=choice.index(default or choice.default))
 
     def initAlgorithm(self, config=None):
-        method = get_method(self.METHOD)
-        d = resolve_options(RegisterOptions(), method)
+        method = self.method()
+        d = RegisterOptions(model="affine") if method is None else resolve_options(RegisterOptions(), method)
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Target raster (to georeference)")))
         self.addParameter(QgsProcessingParameterRasterLayer(self.REFERENCE, self.tr("Reference raster")))
         self.addParameter(self._enum(self.MODEL, self.tr("Transformation"), d.model))
         self.addParameter(self._enum(self.RESAMPLING, self.tr("Resampling")))
+        self.addParameter(QgsProcessingParameterBoolean(
+            self.KEEP_UNVERIFIED, self.tr("Keep unverified results (write the outputs even when the independent check "
+                                          "does not confirm the registration)"), False))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.TOLERANCE, self.tr("Accuracy asked for (reference pixels): verified only within it"),
+            QgsProcessingParameterNumber.Double, d.tolerance_px, minValue=0.01)))
         self.addParameter(_advanced(QgsProcessingParameterBand(
             self.TARGET_BAND, self.tr("Target band to match (empty: luminance of RGB, else band 1)"),
             parentLayerParameterName=self.TARGET, optional=True)))
@@ -100,14 +113,14 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             self.MAX_WORKING_PIXELS, self.tr("Working image size (pixels)"), QgsProcessingParameterNumber.Integer,
             d.max_working_pixels, minValue=4096)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
-            self.RANSAC_THRESHOLD, self.tr("RANSAC tolerance (working pixels)"), QgsProcessingParameterNumber.Double,
-            d.ransac_threshold_px, minValue=0.1)))
+            self.RANSAC_THRESHOLD, self.tr("RANSAC tolerance (working pixels; empty: the method's)"),
+            QgsProcessingParameterNumber.Double, d.ransac_threshold_px, optional=method is None, minValue=0.1)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.MAX_GCPS, self.tr("Maximum number of GCPs"), QgsProcessingParameterNumber.Integer, d.max_gcps,
             minValue=4)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.SEED, self.tr("Random seed"), QgsProcessingParameterNumber.Integer, d.seed, minValue=0)))
-        for f in dataclasses.fields(method.params_type):
+        for f in self._fields():
             p = self._method_parameter(f)
             self.addParameter(p if f.metadata.get("basic") else _advanced(p))
 
@@ -122,9 +135,15 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             createByDefault=False))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.REPORT, self.tr("Report"), self.tr("JSON (*.json)"), optional=True, createByDefault=False))
+        self.addOutput(QgsProcessingOutputString("VERDICT", self.tr("Verdict of the independent check")))
+        self.addOutput(QgsProcessingOutputString("METHOD", self.tr("Method that produced the result")))
         self.addOutput(QgsProcessingOutputNumber("RMSE_PX", self.tr("RMSE of the GCPs (reference pixels)")))
         self.addOutput(QgsProcessingOutputNumber("RMS_LOO_PX", self.tr("Leave-one-out RMS (reference pixels)")))
         self.addOutput(QgsProcessingOutputNumber("N_GCPS", self.tr("Number of GCPs")))
+
+    def _fields(self):
+        method = self.method()
+        return () if method is None else dataclasses.fields(method.params_type)
 
     def _method_parameter(self, f):
         name, label = method_parameter_name(f.name), f.metadata.get("help", f.name)
@@ -155,7 +174,6 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         return layer.source()
 
     def _values(self, parameters, context):
-        method = get_method(self.METHOD)
         v = {
             self.MODEL: self.parameterAsEnum(parameters, self.MODEL, context),
             self.RESAMPLING: self.parameterAsEnum(parameters, self.RESAMPLING, context),
@@ -173,8 +191,10 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             self.GCP_POINTS: self.parameterAsFileOutput(parameters, self.GCP_POINTS, context),
             self.GCP_VRT: self.parameterAsFileOutput(parameters, self.GCP_VRT, context),
             self.REPORT: self.parameterAsFileOutput(parameters, self.REPORT, context),
+            self.TOLERANCE: self.parameterAsDouble(parameters, self.TOLERANCE, context),
+            self.KEEP_UNVERIFIED: self.parameterAsBoolean(parameters, self.KEEP_UNVERIFIED, context),
         }
-        for f in dataclasses.fields(method.params_type):
+        for f in self._fields():
             key = method_parameter_name(f.name)
             if f.metadata.get("choices"):
                 v[key] = self.parameterAsEnum(parameters, key, context)
@@ -189,7 +209,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         return v
 
     def processAlgorithm(self, parameters, context, feedback):
-        method = get_method(self.METHOD)
+        method = self.method()
         target = self._raster_path(parameters, self.TARGET, context)
         reference = self._raster_path(parameters, self.REFERENCE, context)
         values = self._values(parameters, context)
@@ -202,23 +222,59 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             if message:
                 feedback.setProgressText(message)
 
+        params = {} if method is None else method_values(method, values)
         try:
-            result, written = run(target, reference, paths, method=self.METHOD, params=method_values(method, values),
-                                  options=options, output=output, progress=progress, is_canceled=feedback.isCanceled)
-            for note in result.notes:
-                feedback.pushInfo(note)
+            result, written = run(target, reference, paths, method=self.METHOD, params=params, options=options,
+                                  output=output, accept_unverified=values[self.KEEP_UNVERIFIED], progress=progress,
+                                  is_canceled=feedback.isCanceled)
         except RegistrationCanceled:
             raise QgsProcessingException(self.tr("Registration canceled; no outputs were written.")) from None
+        except UnverifiedResult as exc:
+            self._log(exc.result, feedback)
+            raise QgsProcessingException(self.tr(
+                "The registration was not verified: {}. No georeferenced output was written; set 'Keep unverified "
+                "results' to write it anyway.").format("; ".join(exc.result.verification.reasons))) from None
         except HamtaError as exc:
             raise QgsProcessingException(str(exc)) from None
+        self._log(result, feedback)
         s = result.stats
-        feedback.pushInfo(self.tr("{} GCPs from {} matches; RMSE {:.3f} px, leave-one-out RMS {} px.").format(
-            s["n_gcps"], s["n_matches"], s["rmse_px"], "n/a" if s["rms_loo_px"] is None else f"{s['rms_loo_px']:.3f}"))
         results = {self.OUTPUT: written.get("geotiff"), self.GCP_LAYER: written.get("gpkg"),
                    self.GCP_POINTS: written.get("points"), self.GCP_VRT: written.get("vrt"),
                    self.REPORT: written.get("report"), "RMSE_PX": s["rmse_px"], "RMS_LOO_PX": s["rms_loo_px"],
-                   "N_GCPS": s["n_gcps"]}
+                   "N_GCPS": s["n_gcps"], "VERDICT": result.verification.verdict, "METHOD": result.method}
         return {k: v for k, v in results.items() if v is not None}
+
+    def _log(self, result, feedback):
+        for a in (result.auto or {}).get("attempts", []):
+            feedback.pushInfo(self.tr("Tried {}: {} ({:.1f} s) - {}").format(a["method"], a["outcome"], a["time_s"],
+                                                                            a["reason"]))
+        for note in result.notes:
+            feedback.pushInfo(note)
+        v = result.verification
+        if v.verified:
+            feedback.pushInfo(self.tr("Verified by an independent check: {} of {} sites agree; estimated error within "
+                                      "{:.2f} px.").format(v.n_agree, v.n_sites, v.error_bound_px))
+        else:
+            feedback.reportError(self.tr("NOT VERIFIED ({}): {}").format(v.verdict, "; ".join(v.reasons)))
+        s = result.stats
+        feedback.pushInfo(self.tr("{} GCPs from {} matches; self-reported RMSE {:.3f} px, leave-one-out RMS {} px "
+                                  "(residuals of the fit, not its accuracy).").format(
+            s["n_gcps"], s["n_matches"], s["rmse_px"], "n/a" if s["rms_loo_px"] is None else f"{s['rms_loo_px']:.3f}"))
+
+
+class RegisterAutoAlgorithm(RegisterAlgorithm):
+    METHOD = AUTO
+    ALG_NAME = "registerauto"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("RegisterAlgorithm", "Register raster (automatic)")
+    HELP = QT_TRANSLATE_NOOP(
+        "RegisterAlgorithm",
+        "Registers the target raster onto the reference raster and chooses the method itself: the fast SIFT "
+        "matcher first, then matchers for images of different modality (SAR, infrared, maps) and for SAR, until "
+        "a result passes an independent check. The check compares the two rasters at sites spread over the "
+        "overlap, not the matches the model was fitted on, against what wrong alignments of the same rasters "
+        "give, and bounds the remaining error. A result that does not verify is not written unless 'Keep "
+        "unverified results' is set; the log lists every method tried, its verdict and its time. The other "
+        "algorithms of this group run one method each, for experts.")
 
 
 class RegisterSiftAlgorithm(RegisterAlgorithm):

@@ -120,6 +120,9 @@ def prepare_working_images(target: RasterInfo, reference: RasterInfo, *, target_
     """
     TARGET_GEOREF.check(target_georef)
     prior, notes = _prior_usable(target, reference, target_georef)
+    notes += [f"the {role} raster '{info.path}' has a collar of {info.collar:g} around its footprint "
+              f"({100 * info.collar_share:.1f} % of the pixels, no nodata declared); it is read as nodata"
+              for role, info in (("target", target), ("reference", reference)) if info.collar is not None]
     if prior:
         return _prepare_with_prior(target, reference, target_bands, reference_bands, max_pixels, notes)
     mode = "search" if reference.georeferenced else "pixel"

@@ -33,6 +33,7 @@ from ..errors import OutputError
 from ..estimation.models import local_jacobian
 from ..options import GRID, RESAMPLING
 from ..progress import Monitor
+from .tags import verdict_tags
 
 _PLACEHOLDER_CRS = CRS.from_epsg(3857)  # lets GDAL warp between two grids of a raster without CRS
 _BLOCK_ROWS = 512
@@ -98,6 +99,13 @@ def write_vrt(path: str, result, gcp_rows: Optional[np.ndarray] = None, geotrans
     for tag in ("SRS", "GeoTransform", "GCPList"):
         for el in root.findall(tag):
             root.remove(el)
+    if result.verification is not None:
+        metadata = next((el for el in root.findall("Metadata") if not el.get("domain")), None)
+        if metadata is None:
+            metadata = ET.Element("Metadata")
+            root.insert(0, metadata)
+        for key, value in verdict_tags(result).items():
+            ET.SubElement(metadata, "MDI", key=key).text = value
     for el in root.iter("SourceFilename"):
         el.text = source
         el.set("relativeToVRT", "0")
@@ -186,6 +194,7 @@ def write_geotiff(path: str, result, resampling: str = "bilinear", grid: str = "
                 with rasterio.open(path, "w", **profile) as dst:
                     _warp_blocks(src, dst, transform, warp_crs, width, height, nodata, resampling, options, monitor)
                     dst.colorinterp = src.colorinterp
+                    dst.update_tags(**verdict_tags(result))
                     levels = [f for f in (2, 4, 8, 16, 32) if max(width, height) / f >= 256]
                     if levels:
                         dst.build_overviews(levels, Resampling.average)

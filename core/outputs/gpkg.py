@@ -12,6 +12,7 @@ import struct
 import numpy as np
 
 from .points import destination_coordinates
+from .tags import verdict_text
 
 TABLE = "gcps"
 _APPLICATION_ID = 0x47504B47  # "GPKG"
@@ -68,8 +69,8 @@ def write_gcp_layer(path: str, result) -> None:
         bounds = (dst.min(axis=0).tolist() + dst.max(axis=0).tolist()) if len(dst) else [None] * 4
         con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, "
                     "max_x, max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)",
-                    (TABLE, "features", TABLE, "Hamta ground control points", bounds[0], bounds[1], bounds[2],
-                     bounds[3], srs_id))
+                    (TABLE, "features", TABLE, "Hamta ground control points; " + verdict_text(result), bounds[0],
+                     bounds[1], bounds[2], bounds[3], srs_id))
         con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (TABLE, "geom", "POINT", srs_id, 0, 0))
         con.commit()
     finally:

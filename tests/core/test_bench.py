@@ -1,5 +1,6 @@
 """``hamta bench``: the quick run as a smoke test with real assertions, and the table logic."""
 import json
+import os
 
 import pytest
 
@@ -64,3 +65,10 @@ def test_bad_selection_is_rejected():
         BenchConfig(families=("nope",)).resolved()
     with pytest.raises(ValueError, match="unknown method 'nope'"):
         BenchConfig(methods=("nope",)).resolved()
+
+
+def test_default_data_folder_is_beside_the_repository(shared, monkeypatch):
+    from hamta.bench.families import default_data_dir
+
+    monkeypatch.delenv("HAMTA_SHARED_DATA", raising=False)
+    assert os.path.samefile(default_data_dir(), shared / "data")

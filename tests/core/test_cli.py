@@ -79,3 +79,35 @@ def test_demo_reports_the_true_error(tmp_path, capsys):
     rmse = float(line.split("RMSE ")[1].split(" px")[0])
     assert rmse < 0.5
     assert (tmp_path / "demo" / "result" / "registered.tif").is_file()
+
+
+def test_an_unverified_result_exits_3_and_writes_only_its_report(tmp_path, demo_pair, capsys):
+    out = tmp_path / "strict"
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+               "--tolerance", "0.01", "--out", str(out), "--quiet"])
+    captured = capsys.readouterr()
+    assert rc == 3 and "NOT VERIFIED" in captured.out and "No georeferenced output" in captured.err
+    assert sorted(p.name for p in out.iterdir()) == ["report.json"]
+    report = json.loads((out / "report.json").read_text())
+    assert report["quality"]["verdict"] != "verified" and report["quality"]["reasons"]
+
+
+def test_accept_unverified_writes_the_outputs_with_the_verdict_in_them(tmp_path, demo_pair, capsys):
+    import rasterio
+
+    out = tmp_path / "kept"
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+               "--tolerance", "0.01", "--accept-unverified", "--vrt", "--out", str(out), "--quiet"])
+    assert rc == 3
+    with rasterio.open(out / "registered.tif") as ds:
+        assert ds.tags()["HAMTA_VERDICT"] in ("suspect", "failed") and "HAMTA_VERDICT_REASONS" in ds.tags()
+    with rasterio.open(out / "gcps.vrt") as ds:
+        assert ds.tags()["HAMTA_VERDICT"] in ("suspect", "failed")
+    assert "NOT VERIFIED" in (out / "gcps.gpkg").read_bytes().decode("latin-1")
+
+
+def test_auto_is_the_default_and_lists_what_it_tried(tmp_path, demo_pair, capsys):
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out",
+               str(tmp_path / "a"), "--quiet"])
+    printed = capsys.readouterr().out
+    assert rc == 0 and "* tried sift: verified" in printed and "result: verified" in printed

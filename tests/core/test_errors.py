@@ -68,8 +68,12 @@ def test_too_few_matches(raster_writer):
     a = raster_writer("a.tif", _texture(1), **UTM)
     b = raster_writer("b.tif", _texture(99))  # unrelated noise, no georeferencing
     with pytest.raises(InsufficientMatchesError, match=r"'.*b.tif'.*at least \d+ are needed") as info:
-        register(b, a)
+        register(b, a, "sift")
     assert info.value.found < info.value.needed
+    try:
+        assert not register(b, a).verified  # 'auto' may return its best guess, never as verified
+    except InsufficientMatchesError:
+        pass
 
 
 def test_unsupported_band(demo_pair):
@@ -81,7 +85,7 @@ def test_unknown_method_and_parameter(demo_pair):
     with pytest.raises(ValueError, match="unknown method 'magic'; available: .*sift"):
         register(demo_pair["target"], demo_pair["reference"], method="magic")
     with pytest.raises(ValueError, match="has no parameter.*colour"):
-        register(demo_pair["target"], demo_pair["reference"], params={"colour": "red"})
+        register(demo_pair["target"], demo_pair["reference"], "sift", params={"colour": "red"})
 
 
 def test_cancel_stops_the_run(demo_pair):

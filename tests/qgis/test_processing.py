@@ -174,3 +174,28 @@ def test_points_file_round_trips_through_the_qgis_reader(provider, demo_pair, tm
     assert len(loaded["points"]) == len(ours)
     for (mx, my, sx, sy, en), (qmx, qmy, qsx, qsy, qen) in zip(ours, loaded["points"]):
         assert (qmx, qmy, qsx, qsy) == pytest.approx((mx, my, sx, sy), abs=1e-6) and qen == en
+
+
+def test_automatic_algorithm_registers_and_reports_its_verdict(provider, demo_pair, tmp_path):
+    import processing
+
+    alg = provider.algorithm("registerauto")
+    assert alg is not None and alg.displayName() == "Register raster (automatic)"
+    assert not [p for p in alg.parameterDefinitions() if p.name().startswith("P_")]
+    res = processing.run("hamta:registerauto", dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"],
+                                                    OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json")))
+    assert res["VERDICT"] == "verified" and res["METHOD"] == "sift" and os.path.isfile(res["OUTPUT"])
+    report = json.loads(open(res["REPORT"]).read())
+    assert report["quality"]["verdict"] == "verified" and report["auto"]["attempts"][0]["accepted"]
+
+
+def test_unverified_result_fails_clearly_unless_kept(provider, demo_pair, tmp_path):
+    import processing
+
+    params = dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], TOLERANCE=0.01,
+                  OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json"))
+    with pytest.raises(QgsProcessingException, match="not verified"):
+        processing.run("hamta:registersift", params)
+    assert not (tmp_path / "o.tif").exists()
+    res = processing.run("hamta:registersift", dict(params, KEEP_UNVERIFIED=True))
+    assert res["VERDICT"] in ("suspect", "failed") and os.path.isfile(res["OUTPUT"])

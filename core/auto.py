@@ -1,0 +1,142 @@
+"""``auto``: methods from fast to robust, until one's result verifies.
+
+The fast path decides first: OpenCV SIFT registers most same-sensor pairs in about a second, and
+when its result verifies nothing else runs. Otherwise rotation- and scale-invariant multimodal
+matching, then structural (CFOG) search for modality gaps, then SAR-specific matching, and last
+the slow all-rotation structural search, each checked by the same independent verification
+(:mod:`hamta.core.verify`), until one verifies or the time budget is spent. The result says which
+methods ran, in what order, how long each took and why each was accepted or rejected; when none
+verified, the best unverified result is returned, marked as such.
+
+This module does not register by itself: :func:`register_auto` receives ``attempt(method, params,
+monitor) -> RegistrationResult``, which the pipeline binds to images it has read once.
+"""
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+from typing import Callable, List, Mapping
+
+import numpy as np
+
+from .errors import HamtaError, InputError, InsufficientMatchesError, RegistrationCanceled
+from .progress import Monitor
+
+AUTO = "auto"
+VERDICT_RANK = {"verified": 2, "suspect": 1, "failed": 0}
+
+
+@dataclass(frozen=True)
+class Step:
+    """One method ``auto`` may try, with its parameters and what it is for."""
+
+    method: str
+    params: Mapping[str, object]
+    why: str
+
+
+CHAIN = (
+    Step("sift", {}, "fast; the same sensor or similar images, any rotation and scale"),
+    Step("cfog", {}, "across modalities (SAR, infrared, maps), target roughly north-up"),
+    Step("ndsift-pc", {}, "SAR onto SAR: speckle-robust features, any rotation"),
+    Step("cfog", {"max_rotation_deg": 180.0}, "across modalities at any rotation (slow)"),
+)
+
+
+def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
+    """Try ``chain``'s steps in order; return the first verified result, else the best one.
+
+    ``options.auto_budget_s`` bounds the time: once spent, no further step starts. Raises
+    :class:`InsufficientMatchesError` (listing every attempt) when no step produced a model.
+    """
+    chain = CHAIN if chain is None else chain
+    start = time.perf_counter()
+    attempts: List[dict] = []
+    found = []
+    best, chosen = None, None
+    for i, step in enumerate(chain):
+        elapsed = time.perf_counter() - start
+        record = {"method": step.method, "params": dict(step.params), "why": step.why}
+        if elapsed > options.auto_budget_s:
+            attempts.append(dict(record, outcome="skipped", reason=f"time budget of {options.auto_budget_s:g} s spent",
+                                 time_s=0.0))
+            continue
+        t0 = time.perf_counter()
+        try:
+            result = attempt(step.method, dict(step.params), monitor.span(i / len(chain), (i + 1) / len(chain)))
+        except (RegistrationCanceled, InputError):
+            raise
+        except (HamtaError, ValueError, ArithmeticError) as exc:
+            attempts.append(dict(record, outcome="no model", reason=_first_line(exc),
+                                 time_s=round(time.perf_counter() - t0, 3)))
+            continue
+        v = result.verification
+        attempts.append(dict(record, outcome=v.verdict, reason="; ".join(v.reasons) or "verified",
+                             time_s=round(time.perf_counter() - t0, 3)))
+        partner = None if v.verified else _corroborating(result, found, options.tolerance_px)
+        if partner is not None:
+            result = corroborate(result, partner[0], partner[1])
+            attempts[-1].update(outcome="verified", reason=_first_line(result.verification.corroboration["summary"]))
+        found.append(result)
+        if best is None or _rank(result) > _rank(best):
+            best, chosen = result, len(attempts) - 1
+        if result.verified:
+            break
+    monitor.report(1.0, "done")
+    if best is None:
+        raise InsufficientMatchesError(
+            "No method found a registration ('auto' tried " + "; ".join(
+                f"{a['method']}: {a['reason']}" for a in attempts) + ").", 0, 1)
+    for i, a in enumerate(attempts):
+        a["accepted"] = i == chosen
+    timings = dict(best.timings, auto_total=round(time.perf_counter() - start, 4))
+    return dataclasses.replace(best, auto={"attempts": attempts, "chosen": chosen}, timings=timings)
+
+
+def _corroborating(result, earlier, tolerance_px: float):
+    """(an earlier result of another method, their distance) when both have partial support from the
+    independent check and their models agree within ``tolerance_px``; None otherwise."""
+    if result.verification.verdict != "suspect":
+        return None
+    for other in earlier:
+        if other.method == result.method or other.verification.verdict != "suspect":
+            continue
+        d = model_distance(result, other)
+        if d is not None and d <= tolerance_px:
+            return other, d
+    return None
+
+
+def model_distance(a, b, n: int = 20):
+    """RMS distance (reference px) between two results' models over an ``n`` x ``n`` grid of target
+    points that ``a`` maps inside the reference; None when none does."""
+    t, r = a.target, a.reference
+    gx, gy = np.meshgrid((np.arange(n) + 0.5) * t.width / n, (np.arange(n) + 0.5) * t.height / n)
+    pts = np.column_stack([gx.ravel(), gy.ravel()])
+    pa = a.model.apply(pts)
+    inside = np.all(np.isfinite(pa), axis=1) & (pa[:, 0] >= 0) & (pa[:, 1] >= 0) & (pa[:, 0] <= r.width) & (
+        pa[:, 1] <= r.height)
+    if not inside.any():
+        return None
+    return float(np.sqrt(np.mean(np.sum((pa[inside] - b.model.apply(pts[inside])) ** 2, axis=1))))
+
+
+def corroborate(result, other, distance: float):
+    """``result`` verified by agreement with ``other``, an independent method's result."""
+    summary = (f"verified by agreement of independent estimates: {result.method} and {other.method} agree within "
+               f"{distance:.2f} px, each partly supported by the site check")
+    v = dataclasses.replace(result.verification, verdict="verified", reasons=(),
+                            corroboration={"method": other.method, "distance_px": distance, "summary": summary,
+                                           "own_reasons": list(result.verification.reasons)})
+    return dataclasses.replace(result, verification=v)
+
+
+def _rank(result):
+    v = result.verification
+    return VERDICT_RANK[v.verdict], v.n_agree, -(v.error_bound_px if v.error_bound_px is not None else 1e9)
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__

@@ -1,0 +1,26 @@
+"""The verdict of the independent check, as every output carries it (tags, descriptions)."""
+from __future__ import annotations
+
+
+def verdict_tags(result) -> dict:
+    """Metadata items (GeoTIFF tags, VRT metadata) naming the method and the verdict."""
+    v = result.verification
+    tags = {"HAMTA_METHOD": result.method, "HAMTA_MODEL": result.model.kind,
+            "HAMTA_VERDICT": "unchecked" if v is None else v.verdict}
+    if v is not None:
+        if v.error_bound_px is not None:
+            tags["HAMTA_ERROR_BOUND_PX"] = f"{v.error_bound_px:.3f}"
+        if v.reasons:
+            tags["HAMTA_VERDICT_REASONS"] = "; ".join(v.reasons)
+    return tags
+
+
+def verdict_text(result) -> str:
+    """One line: the verdict and, when not verified, why."""
+    v = result.verification
+    if v is None:
+        return "not checked"
+    if v.verified:
+        bound = "" if v.error_bound_px is None else f", estimated error within {v.error_bound_px:.2f} px"
+        return f"verified by an independent check{bound}"
+    return f"NOT VERIFIED ({v.verdict}): " + "; ".join(v.reasons)

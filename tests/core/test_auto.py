@@ -1,0 +1,41 @@
+"""``auto``: the fast path decides first, escalation when it does not verify, every attempt reported."""
+import pytest
+
+from hamta.bench.families import CaseSpec, build_case
+from hamta.core import InsufficientMatchesError, register
+from hamta.core import auto as auto_module
+from hamta.core.auto import Step
+
+
+def test_easy_pair_stops_at_sift(demo_pair):
+    result = register(demo_pair["target"], demo_pair["reference"])
+    assert result.method == "sift" and result.verified
+    attempts = result.auto["attempts"]
+    assert [a["method"] for a in attempts] == ["sift"] and attempts[0]["accepted"]
+    assert result.to_report()["auto"]["chosen"] == 0
+
+
+def test_escalates_to_a_method_whose_result_verifies(tmp_path, shared, monkeypatch):
+    spec = CaseSpec("multimodal", "landsat_invert", {"source": "landsat", "mapping": "invert"})
+    case = build_case(spec, str(tmp_path), 512, str(shared / "data"))
+    chain = (Step("phasecorr", {}, "test"), Step("sift", {}, "test"), Step("cfog", {}, "test"))
+    monkeypatch.setattr(auto_module, "CHAIN", chain)
+    result = register(case.target, case.reference)
+    attempts = result.auto["attempts"]
+    assert result.method == "cfog" and result.verified and attempts[-1]["accepted"]
+    assert [a["method"] for a in attempts] == ["phasecorr", "sift", "cfog"]
+    assert all(a["outcome"] != "verified" for a in attempts[:2]) and all(a["time_s"] >= 0 for a in attempts)
+
+
+def test_nothing_found_names_every_attempt(raster_writer, demo_pair, monkeypatch):
+    import numpy as np
+
+    noise = raster_writer("noise.tif", np.random.default_rng(0).integers(0, 255, (300, 300), dtype=np.uint8))
+    monkeypatch.setattr(auto_module, "CHAIN", (Step("sift", {}, "test"), Step("orb", {}, "test")))
+    with pytest.raises(InsufficientMatchesError, match="'auto' tried sift: .*; orb: "):
+        register(noise, demo_pair["reference"])
+
+
+def test_auto_takes_no_method_parameters(demo_pair):
+    with pytest.raises(ValueError, match="takes no method parameters"):
+        register(demo_pair["target"], demo_pair["reference"], "auto", params={"ratio": 0.7})

@@ -1,0 +1,39 @@
+"""Collars: a constant fill around the footprint, undeclared, is read as nodata and reported."""
+import cv2
+import numpy as np
+
+from hamta.core.io.collar import find_collar
+from hamta.core.io.raster import open_raster, read_image, resolve_bands
+
+
+def _rotated_footprint(value=0, size=300, angle=25.0):
+    rng = np.random.default_rng(2)
+    img = cv2.GaussianBlur(rng.uniform(20, 230, (size, size)).astype(np.float32), (0, 0), 2)
+    mask = np.zeros((size, size), np.uint8)
+    box = cv2.boxPoints(((size / 2, size / 2), (0.7 * size, 0.6 * size), angle)).astype(np.int32)
+    cv2.fillPoly(mask, [box], 1)
+    return np.where(mask > 0, np.clip(img, 1, 254), value).astype(np.uint8), mask > 0
+
+
+def test_a_border_connected_fill_is_found_and_an_inner_dark_patch_is_not():
+    img, inside = _rotated_footprint()
+    value, share = find_collar(img[None], "uint8")
+    assert value == 0 and abs(share - (1 - inside.mean())) < 0.01
+    plain = np.full((100, 100), 90, np.uint8)
+    plain[40:60, 40:60] = 0
+    assert find_collar(plain[None], "uint8") is None
+
+
+def test_a_white_collar_is_found_too():
+    img, _ = _rotated_footprint(value=255)
+    assert find_collar(img[None], "uint8")[0] == 255
+
+
+def test_collar_pixels_read_as_invalid_unless_nodata_is_declared(raster_writer):
+    img, inside = _rotated_footprint()
+    info = open_raster(raster_writer("collar.tif", img))
+    assert info.collar == 0
+    data, valid = read_image(info, resolve_bands(info, None))
+    assert not valid[~inside].any() and valid[inside].mean() > 0.93
+    declared = open_raster(raster_writer("declared.tif", img, nodata=0))
+    assert declared.collar is None

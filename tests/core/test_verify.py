@@ -1,0 +1,100 @@
+"""The independent check: right models verify, wrong ones do not, and the evidence says why."""
+import json
+import math
+
+import numpy as np
+import pytest
+
+from hamta.core.estimation.models import LinearModel, PolynomialModel
+from hamta.core.io.raster import open_raster, resolve_bands
+from hamta.core.verify import VerifyParams, error_field, judge, verify
+
+
+@pytest.fixture(scope="module")
+def demo(demo_pair):
+    truth = np.array(json.load(open(demo_pair["truth"]))["target_px_to_reference_px"])
+    t, r = open_raster(demo_pair["target"]), open_raster(demo_pair["reference"])
+    return t, resolve_bands(t, None), r, resolve_bands(r, None), truth
+
+
+def _shifted(m, dx, dy=0.0):
+    return np.array([[1, 0, dx], [0, 1, dy], [0, 0, 1.0]]) @ m
+
+
+def _rotated(m, angle_deg, centre):
+    a = math.radians(angle_deg)
+    r = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+    e = np.eye(3)
+    e[:2, :2], e[:2, 2] = r, np.asarray(centre) - r @ np.asarray(centre)
+    return e @ m
+
+
+def test_the_true_model_verifies_with_a_small_error_bound(demo):
+    t, tb, r, rb, truth = demo
+    v = verify(LinearModel("affine", truth), t, tb, r, rb)
+    assert v.verdict == "verified" and not v.reasons
+    assert v.n_agree >= 10 and v.chance < 1e-10 and v.error_bound_px < 0.5
+    assert json.loads(json.dumps(v.to_dict()))["verdict"] == "verified"
+
+
+@pytest.mark.parametrize("wrong", ["shift4", "shift12", "shift80", "rot2", "rot90", "scale1.05"])
+def test_wrong_models_do_not_verify(demo, wrong):
+    t, tb, r, rb, truth = demo
+    centre = [500.0, 500.0]
+    m = {"shift4": _shifted(truth, 4.0), "shift12": _shifted(truth, 0, 12.0), "shift80": _shifted(truth, 80, -40),
+         "rot2": _rotated(truth, 2.0, centre), "rot90": _rotated(truth, 90.0, centre),
+         "scale1.05": np.diag([1.05, 1.05, 1.0]) @ _shifted(truth, -25, -25)}[wrong]
+    v = verify(LinearModel("projective", m), t, tb, r, rb)
+    assert v.verdict != "verified", v.to_dict()
+    assert v.reasons
+
+
+def test_a_larger_tolerance_accepts_what_it_covers_and_no_more(demo):
+    t, tb, r, rb, truth = demo
+    off = LinearModel("affine", _shifted(truth, 2.5))
+    assert not verify(off, t, tb, r, rb, VerifyParams(tolerance_px=1.5)).verified
+    assert verify(off, t, tb, r, rb, VerifyParams(tolerance_px=5.0)).verified
+
+
+def test_non_linear_models_are_checked_through_their_local_inverse(demo):
+    t, tb, r, rb, truth = demo
+    gx, gy = np.meshgrid(np.linspace(0, t.width, 8), np.linspace(0, t.height, 8))
+    src = np.column_stack([gx.ravel(), gy.ravel()])
+    dst = LinearModel("affine", truth).apply(src)
+    bent = dst + 6.0 * np.sin(src[:, :1] / 120.0)  # up to 6 px off, varying across the image
+    assert verify(PolynomialModel.fit(2, src, dst), t, tb, r, rb).verified
+    assert not verify(PolynomialModel.fit(3, src, bent), t, tb, r, rb).verified
+
+
+def test_a_model_that_misses_the_reference_has_nothing_to_check(demo):
+    t, tb, r, rb, truth = demo
+    v = verify(LinearModel("affine", _shifted(truth, 5000.0)), t, tb, r, rb)
+    assert v.verdict == "failed" and v.n_sites == 0
+
+
+def test_judge_separates_agreement_from_chance():
+    rng = np.random.default_rng(3)
+    n, k = 20, 8
+    sites = np.column_stack([rng.uniform(0, 500, n), rng.uniform(0, 500, n)])
+    extent = np.column_stack([rng.uniform(0, 500, 200), rng.uniform(0, 500, 200)])
+    peaks = np.column_stack([np.full(n, 0.8), rng.uniform(0.05, 0.3, (n, k - 1))])
+    offsets = rng.uniform(-7.5, 7.5, (n, k, 2))
+    offsets[:, 0] = rng.normal(0, 0.2, (n, 2))
+    z = np.column_stack([np.full(n, 4.0), rng.normal(0, 1, (n, k - 1))])
+    v = judge(sites, offsets, peaks, z, extent, VerifyParams())
+    assert v.verified and v.n_agree == n
+    offsets[:, 0] = rng.uniform(-7.5, 7.5, (n, 2))
+    peaks[:, 0] = rng.uniform(0.05, 0.3, n)
+    z[:, 0] = rng.normal(0, 1, n)
+    assert judge(sites, offsets, peaks, z, extent, VerifyParams()).verdict == "failed"
+
+
+def test_error_field_recovers_a_rotation_error_the_mean_would_hide():
+    gx, gy = np.meshgrid(np.linspace(50, 450, 5), np.linspace(50, 450, 5))
+    sites = np.column_stack([gx.ravel(), gy.ravel()])
+    a = math.radians(1.0)
+    r = np.array([[math.cos(a) - 1, -math.sin(a)], [math.sin(a), math.cos(a) - 1]])
+    offsets = (sites - 250.0) @ r.T  # zero mean, 1 degree about the centre
+    error, bound, scatter = error_field(sites, offsets, sites)
+    expected = float(np.sqrt(np.mean(np.sum(offsets ** 2, axis=1))))
+    assert error == pytest.approx(expected, rel=1e-6) and scatter < 1e-6 and bound >= error
