@@ -2,11 +2,13 @@
 
 The fast path decides first: OpenCV SIFT registers most same-sensor pairs in about a second, and
 when its result verifies nothing else runs. Otherwise rotation- and scale-invariant multimodal
-matching, then structural (CFOG) search for modality gaps, then SAR-specific matching, and last
-the slow all-rotation structural search, each checked by the same independent verification
-(:mod:`hamta.core.verify`), until one verifies or the time budget is spent. The result says which
-methods ran, in what order, how long each took and why each was accepted or rejected; when none
-verified, the best unverified result is returned, marked as such.
+matching (``xmodal``), then the structural (CFOG) search for north-up modality gaps, then
+SAR-specific matching, and last the slow all-rotation structural search, each checked by the
+same independent verification (:mod:`hamta.core.verify`), until one verifies or the time budget
+is spent. The result says which methods ran, in what order, how long each took and why each was
+accepted or rejected; when none verified, the best unverified result is returned, marked as such.
+Two results of different methods that each have partial support from the check and agree with
+each other within the tolerance verify each other (agreement between independent estimates).
 
 This module does not register by itself: :func:`register_auto` receives ``attempt(method, params,
 monitor) -> RegistrationResult``, which the pipeline binds to images it has read once.
@@ -38,9 +40,10 @@ class Step:
 
 CHAIN = (
     Step("sift", {}, "fast; the same sensor or similar images, any rotation and scale"),
-    Step("cfog", {}, "across modalities (SAR, infrared, maps), target roughly north-up"),
+    Step("xmodal", {}, "across modalities (SAR, infrared, depth, maps, night lights), any rotation, scale 1/2-2"),
+    Step("cfog", {}, "across modalities, target roughly north-up: dense structural search"),
     Step("ndsift-pc", {}, "SAR onto SAR: speckle-robust features, any rotation"),
-    Step("cfog", {"max_rotation_deg": 180.0}, "across modalities at any rotation (slow)"),
+    Step("cfog", {"max_rotation_deg": 180.0}, "across modalities at any rotation, dense (slow)"),
 )
 
 

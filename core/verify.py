@@ -27,6 +27,7 @@ Sensing 9(7), 676 (reliability of local shifts, checked after de-shifting).
 """
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -78,21 +79,23 @@ class VerifyParams:
         sites (binomial tail at 5 %), and the largest Mann-Whitney p-value of the sites' lifts
         against chance; both must hold.
     max_contradict : float
-        Largest share of clear sites (peak above 90 % of chance peaks) whose peak is elsewhere.
+        Largest share of clear sites (peak above 90 % of chance peaks) whose peak is elsewhere;
+        contradicting sites that share one error field bound the model's error instead (see
+        :func:`shared_error`).
     min_coverage : float
         Smallest share of the measured sites' extent spanned by agreeing sites, in each axis.
     """
 
     tolerance_px: float = 3.0
     template_px: int = 40
-    max_template_px: int = 128
+    max_template_px: int = 96
     target_sites: int = 25
-    max_sites: int = 64
+    max_sites: int = 36
     min_agree: int = 3
     max_chance: float = 1e-5
     max_z_chance: float = 1e-6
     max_rank_chance: float = 1e-3
-    max_contradict: float = 0.25
+    max_contradict: float = 0.4
     min_coverage: float = 0.4
 
     @property
@@ -306,6 +309,8 @@ def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: 
     n_clear = k + n_contra
     coverage = _coverage(sites[agree | lifted], sites[measured])
     error, bound, scatter = error_field(sites[agree], offsets[agree, 0], extent)
+    clear = measured & (peak[:, 0] >= clear_level) & np.isfinite(offsets[:, 0]).all(axis=1)
+    shared = shared_error(sites[clear], offsets[clear, 0], extent, params.agree_px)
     reasons = []
     if n == 0:
         reasons.append("no site of the overlap could be compared (too small an overlap, masked pixels, or no "
@@ -316,6 +321,8 @@ def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: 
         reasons.append(f"wrong alignments would give this much agreement with probability {min(chance, z_chance):.1e}")
     if n_clear and n_contra > params.max_contradict * n_clear:
         reasons.append(f"{n_contra} of {n_clear} clear sites contradict the model")
+    if shared is not None and shared > params.tolerance_px:
+        reasons.append(f"the clear sites agree on an error of {shared:.1f} px of the model")
     if coverage < params.min_coverage:
         reasons.append(f"the sites that support the model span only {100 * coverage:.0f} % of the overlap's extent")
     if bound is not None and bound > params.tolerance_px:
@@ -330,6 +337,36 @@ def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: 
     return Verification(verdict, tuple(reasons), params.tolerance_px, params.template_px, n, k, n_contra, n_clear,
                         float(rate), chance, coverage, error, bound, scatter, round(elapsed, 4), sites,
                         offsets[:, 0], peaks[:, 0], agree, contradict, z_hits, z_chance, z_mw)
+
+
+def shared_error(sites: np.ndarray, offsets: np.ndarray, extent: np.ndarray, radius: float):
+    """RMS over ``extent`` of the affine error field that most clear sites share (within ``radius``
+    of their offsets), when more sites share it than share no error at all; None otherwise.
+
+    Contradicting sites scattered at random are local differences (parallax, change); contradicting
+    sites that agree with one another are the model's own error (a turn or scale it missed)."""
+    n = len(sites)
+    if n < 4 or len(extent) == 0:
+        return None
+    support0 = int((np.linalg.norm(offsets, axis=1) <= radius).sum())
+    centre = extent.mean(axis=0)
+    scale = max(float(np.abs(extent - centre).max()), 1.0)
+    a = np.column_stack([np.ones(n), (sites - centre) / scale])
+    e = np.column_stack([np.ones(len(extent)), (extent - centre) / scale])
+    triples = np.array(list(itertools.combinations(range(n), 3)))
+    blocks = a[triples]
+    ok = np.abs(np.linalg.det(blocks)) > 1e-6
+    if not ok.any():
+        return None
+    coef = np.linalg.solve(blocks[ok], offsets[triples[ok]])  # (K, 3, 2) affine error fields
+    support = (np.linalg.norm(offsets[None] - np.einsum("nj,kjc->knc", a, coef), axis=2) <= radius).sum(axis=1)
+    k = int(np.argmax(support))
+    if support[k] <= max(support0, 3):  # three sites fit any field: a shared one needs a fourth
+        return None
+    best_field = coef[k]
+    inliers = np.linalg.norm(offsets - a @ best_field, axis=1) <= radius
+    coef = np.linalg.lstsq(a[inliers], offsets[inliers], rcond=None)[0]
+    return float(np.sqrt(np.mean(np.sum((e @ coef) ** 2, axis=1))))
 
 
 def _rate(hits: np.ndarray, valid: np.ndarray, floor: float) -> float:
@@ -485,8 +522,9 @@ def _read_site(model, p, target, target_bands, tds, reference, reference_bands, 
     src = q + (np.column_stack([gx.ravel(), gy.ravel()]) - p) @ jinv.T
     c0, r0 = np.floor(src.min(axis=0)).astype(int) - 2
     c1, r1 = np.ceil(src.max(axis=0)).astype(int) + 2
-    if c0 < 0 or r0 < 0 or c1 > target.width or r1 > target.height or (c1 - c0) * (r1 - r0) > 16 * size * size:
+    if c1 <= 0 or r1 <= 0 or c0 >= target.width or r0 >= target.height or (c1 - c0) * (r1 - r0) > 16 * size * size:
         return None
+    # The window may reach past the target (a turned square's bounding box); what is sampled must not.
     patch, pok = read_image(target, target_bands, Window(c0, r0, c1 - c0, r1 - r0), dataset=tds)
     if pok.mean() < 0.5:
         return None

@@ -19,41 +19,8 @@ import cv2
 import numpy as np
 from scipy import fft as sfft
 
-from ..coords import apply_matrix, matrix_corner_to_opencv
+from .affine2d import apply, invert, similarity, warp
 from .cfog import cfog, ncc_surface, peak_offset
-
-
-def _full(m) -> np.ndarray:
-    m = np.asarray(m, float)
-    return m if m.shape == (3, 3) else np.vstack([m, [0.0, 0.0, 1.0]])
-
-
-def apply(matrix: np.ndarray, xy: np.ndarray) -> np.ndarray:
-    """Points (N, 2) through a 2 x 3 affine or a 3 x 3 homography."""
-    return apply_matrix(_full(matrix), xy)
-
-
-def invert(matrix: np.ndarray) -> np.ndarray:
-    inv = np.linalg.inv(_full(matrix))
-    return inv if np.shape(matrix) == (3, 3) else inv[:2]
-
-
-def similarity(angle_deg: float, scale: float, centre_from, centre_to) -> np.ndarray:
-    """Rotation (clockwise as displayed) and scale taking ``centre_from`` to ``centre_to``."""
-    a = math.radians(angle_deg)
-    lin = scale * np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-    return np.column_stack([lin, np.asarray(centre_to, float) - lin @ np.asarray(centre_from, float)])
-
-
-def warp(image: np.ndarray, valid: np.ndarray, matrix: np.ndarray, shape) -> Tuple[np.ndarray, np.ndarray]:
-    """``image`` resampled onto a ``shape`` grid through ``matrix`` (2 x 3 affine or 3 x 3
-    homography, image px -> grid px), with its validity."""
-    h, w = shape
-    m = matrix_corner_to_opencv(_full(matrix))
-    m, fn = (m, cv2.warpPerspective) if np.shape(matrix) == (3, 3) else (m[:2], cv2.warpAffine)
-    out = fn(image.astype(np.float32), m, (w, h), flags=cv2.INTER_LINEAR, borderValue=0)
-    ok = fn(valid.astype(np.uint8), m, (w, h), flags=cv2.INTER_NEAREST, borderValue=0) > 0
-    return out, ok
 
 
 def _centred(desc: np.ndarray, valid: np.ndarray, local_sigma: float = 0.0) -> np.ndarray:

@@ -12,7 +12,7 @@ seed and none of them lets us score with the same truncated loss across all thre
 from __future__ import annotations
 
 import math
-from typing import Tuple
+from typing import Optional, Tuple
 
 import numpy as np
 
@@ -87,7 +87,8 @@ def _squared_errors(m: np.ndarray, src: np.ndarray, dst: np.ndarray) -> np.ndarr
 
 
 def ransac(src, dst, kind: str, *, threshold_px: float, max_trials: int = 5000,
-           confidence: float = 0.999, rng=0) -> Tuple[LinearModel, np.ndarray]:
+           confidence: float = 0.999, rng=0, scale_range: Optional[Tuple[float, float]] = None
+           ) -> Tuple[LinearModel, np.ndarray]:
     """Robustly fit a linear model from ``src`` (target px) to ``dst`` (reference px).
 
     Parameters
@@ -98,6 +99,9 @@ def ransac(src, dst, kind: str, *, threshold_px: float, max_trials: int = 5000,
         Upper bound on hypotheses; fewer are drawn once ``confidence`` is reached.
     rng : int or numpy.random.Generator
         Seed; the same seed gives the same result.
+    scale_range : (low, high), optional
+        Minimal-sample hypotheses whose scale (sqrt |det| of the linear part) lies outside are
+        discarded: a prior on scale.
 
     Returns
     -------
@@ -123,6 +127,9 @@ def ransac(src, dst, kind: str, *, threshold_px: float, max_trials: int = 5000,
     while trials < min(needed, max_trials):
         idx = np.argsort(rng.random((_BATCH, n)), axis=1)[:, :m] if n <= 64 else _sample(rng, n, m)
         hyp, ok = _MINIMAL[kind](src[idx], dst[idx])
+        if scale_range is not None:
+            scale = np.sqrt(np.abs(np.linalg.det(hyp[:, :2, :2]))) * ts[0, 0] / td[0, 0]
+            ok &= (scale >= scale_range[0]) & (scale <= scale_range[1])
         trials += _BATCH
         if not ok.any():
             continue
@@ -139,10 +146,10 @@ def ransac(src, dst, kind: str, *, threshold_px: float, max_trials: int = 5000,
     return polish(src0, dst0, kind, best_inliers, threshold_px)
 
 
-def ransac_or_none(src, dst, kind: str, *, threshold_px: float, rng=0):
+def ransac_or_none(src, dst, kind: str, *, threshold_px: float, rng=0, **kwargs):
     """:func:`ransac`, or (None, no inliers) where no hypothesis gathers a minimal sample."""
     try:
-        return ransac(src, dst, kind, threshold_px=threshold_px, rng=rng)
+        return ransac(src, dst, kind, threshold_px=threshold_px, rng=rng, **kwargs)
     except ValueError:
         return None, np.zeros(len(src), bool)
 

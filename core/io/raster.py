@@ -10,10 +10,9 @@ from __future__ import annotations
 import math
 import os
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Optional, Tuple
 
-import cv2
 import numpy as np
 import rasterio
 from affine import Affine
@@ -22,7 +21,7 @@ from rasterio.errors import NotGeoreferencedWarning, RasterioIOError
 from rasterio.windows import Window
 
 from ..errors import InputError
-from .collar import SAMPLE_PIXELS, find_collar
+from .collar import SAMPLE_PIXELS, Collar, find_collar
 
 SUPPORTED_DTYPES = ("uint8", "int8", "uint16", "int16", "uint32", "int32", "float32", "float64",
                     "complex64", "complex128", "complex_int16")
@@ -49,8 +48,16 @@ class RasterInfo:
     nodata: Optional[float]
     colorinterp: Tuple[str, ...]
     overview_factors: Tuple[int, ...]
-    collar: Optional[float] = None  # undeclared fill value around the footprint, read as nodata
-    collar_share: float = 0.0
+    collar_fill: Optional[Collar] = field(default=None, compare=False, repr=False)
+
+    @property
+    def collar(self) -> Optional[float]:
+        """The value of an undeclared fill around the footprint, read as nodata (None without one)."""
+        return None if self.collar_fill is None else self.collar_fill.value
+
+    @property
+    def collar_share(self) -> float:
+        return 0.0 if self.collar_fill is None else self.collar_fill.share
 
     @property
     def georeferenced(self) -> bool:
@@ -114,13 +121,12 @@ def _describe(ds, path: str, role: str) -> RasterInfo:
         crs = ds.crs
     if transform.determinant == 0:
         raise InputError(f"The {role} raster '{path}' has a degenerate geotransform {transform}.")
-    collar = _collar(ds, dtype)
     return RasterInfo(
         path=path, width=ds.width, height=ds.height, count=ds.count, dtype=dtype,
         crs=crs if crs else None, transform=transform, georef_source=source, nodata=ds.nodata,
         colorinterp=tuple(ci.name for ci in ds.colorinterp),
         overview_factors=tuple(ds.overviews(1)),
-        collar=None if collar is None else collar[0], collar_share=0.0 if collar is None else collar[1],
+        collar_fill=_collar(ds, dtype),
     )
 
 
@@ -129,10 +135,10 @@ def _collar(ds, dtype: str):
     if ds.nodata is not None or dtype.startswith("complex") or any(
             MaskFlags.all_valid not in flags for flags in ds.mask_flag_enums):
         return None
-    shape, _ = budget_shape(ds.width, ds.height, SAMPLE_PIXELS)
+    shape, factor = budget_shape(ds.width, ds.height, SAMPLE_PIXELS)
     bands = list(range(1, min(ds.count, 4) + 1))
     sample = ds.read(bands, out_shape=(len(bands),) + shape, resampling=Resampling.nearest)
-    return find_collar(sample, dtype)
+    return find_collar(sample, dtype, factor)
 
 
 def resolve_bands(info: RasterInfo, band: Optional[int]) -> Tuple[int, ...]:
@@ -196,10 +202,8 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
                                   resampling=Resampling.nearest, boundless=not inside)
     data = data.astype(np.float32, copy=False)
     valid = np.all(masks > 0, axis=0) & np.all(np.isfinite(data), axis=0)
-    if info.collar is not None:
-        collar = np.all(data == np.float32(info.collar), axis=0).astype(np.uint8)
-        # Pixels on the collar's edge are neither (compression ringing, or averaged cells of a decimated read).
-        valid &= cv2.dilate(collar, np.ones((5, 5), np.uint8)) == 0
+    if info.collar_fill is not None:
+        valid &= ~info.collar_fill.window_mask(window.col_off, window.row_off, window.width, window.height, shape)
     image = np.tensordot(LUMINANCE, data, axes=1) if len(bands) == 3 else data[0]
     image = np.where(valid, image, 0).astype(np.float32, copy=False)
     return image, valid

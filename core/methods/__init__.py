@@ -38,4 +38,17 @@ def all_methods() -> Dict[str, Method]:
 
 def _load_builtin() -> None:
     """Import the built-in method modules once (each registers itself on import)."""
-    from . import cfog, lines_spectral, ndsift_pc, orb, pca_sift, phasecorr, rilbp, rilbp_baselines, sibrif, sift  # noqa: F401
+    from . import (  # noqa: F401
+        cfog,
+        lines_spectral,
+        ndsift_pc,
+        orb,
+        pca_sift,
+        phasecorr,
+        rift,
+        rilbp,
+        rilbp_baselines,
+        sibrif,
+        sift,
+        xmodal,
+    )

@@ -17,16 +17,24 @@ def _rotated_footprint(value=0, size=300, angle=25.0):
 
 def test_a_border_connected_fill_is_found_and_an_inner_dark_patch_is_not():
     img, inside = _rotated_footprint()
-    value, share = find_collar(img[None], "uint8")
-    assert value == 0 and abs(share - (1 - inside.mean())) < 0.01
+    collar = find_collar(img[None], "uint8")
+    assert collar.value == 0 and abs(collar.share - (1 - inside.mean())) < 0.01
     plain = np.full((100, 100), 90, np.uint8)
     plain[40:60, 40:60] = 0
     assert find_collar(plain[None], "uint8") is None
 
 
+def test_a_map_s_white_background_reaching_the_border_is_not_a_collar():
+    img = np.full((200, 200), 255, np.uint8)
+    for k in range(0, 200, 40):  # building blocks between white streets
+        img[k + 8:k + 32, :] = 200
+    img[:, 95:105] = 255
+    assert find_collar(img[None], "uint8") is None
+
+
 def test_a_white_collar_is_found_too():
     img, _ = _rotated_footprint(value=255)
-    assert find_collar(img[None], "uint8")[0] == 255
+    assert find_collar(img[None], "uint8").value == 255
 
 
 def test_collar_pixels_read_as_invalid_unless_nodata_is_declared(raster_writer):

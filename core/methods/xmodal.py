@@ -1,0 +1,233 @@
+"""Across modalities at any rotation and scale: RIFT feature votes, a dense pose check, local RIFT.
+
+For image pairs that differ in modality (optical onto SAR, infrared, depth, maps, night lights)
+*and* by an arbitrary rotation and a scale between 1/2 and 2, where SIFT finds nothing and an
+exhaustive structural search is slow and fragile.
+
+1. Features: both images rescaled by one factor (the reference's longest side at most
+   ``feat_px``); on a pyramid of each (factors 1, 2^-1/2, 1/2) RIFT2 keypoints with rotation-
+   invariant MIM descriptors (:mod:`hamta.core.features.rift`); every target descriptor takes its
+   nearest reference descriptor.
+2. Hypotheses: each match votes for a rotation (difference of the keypoints' orientations) and a
+   scale (ratio of their pyramid factors); the strongest (rotation, scale) cells each give a
+   similarity by RANSAC on the matches that voted near them.
+3. Dense check: each hypothesis is scored by the masked NCC of CFOG descriptors of the target seen
+   through it against the reference's (:mod:`hamta.core.area.pose_check`), over shifts and a few
+   scale factors around it, and ranked by the significance of the best.
+4. Local RIFT: the best few are refined twice by matching plain (not rotation-invariant) MIM
+   descriptors near their predicted positions; the hypothesis with most inliers wins, and its
+   matches are returned for the shared robust fit, full-resolution CFOG refinement and check.
+
+References
+----------
+Li, J., Hu, Q., & Ai, M. (2020). RIFT. IEEE TIP 29, 3296-3310. :DOI:`10.1109/TIP.2019.2959244`
+Li, J., Shi, P., Hu, Q., & Zhang, Y. (2023). RIFT2. arXiv:2303.00319.
+Li, J., Hu, Q., & Zhang, Y. (2023). Multimodal image matching: a scale-invariant algorithm and an
+open dataset. ISPRS J. Photogramm. Remote Sens. 204, 77-88 (scale by pyramids; the data set).
+Ye, Y., Bruzzone, L., Shan, J., Bovolo, F., & Zhu, Q. (2019). CFOG. IEEE TGRS 57(11), 9059-9070.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import List
+
+import numpy as np
+
+from ..area.affine2d import angle_scale, apply, compose, invert, resize, scaling, similarity, warp
+from ..area.pose_check import ShiftCorrelator, TargetPyramid, oriented_channels
+from ..estimation.ransac import ransac_or_none
+from ..features import rift
+from ..progress import Monitor
+from ..refine import STRUCTURAL_REFINEMENT
+from ..types import Matches
+from .registry import Method, param, register_method, validate
+
+CITATION = ("Li, Hu & Ai 2020, IEEE TIP 29:3296 (RIFT); Li et al. 2023, arXiv:2303.00319 (RIFT2); Li, Hu & Zhang "
+            "2023, ISPRS J. 204:77 (scale, data set); Ye et al. 2019, IEEE TGRS 57(11):9059 (CFOG)")
+
+
+@dataclass(frozen=True)
+class XmodalParams:
+    """The four stages; defaults chosen on the odd-numbered pairs of the real multimodal set and
+    confirmed on the even-numbered ones (docs/benchmarks.md)."""
+
+    feat_px: int = param(320, "Longest reference side for feature extraction, px: enough detail for RIFT features, "
+                              "and their cost.", minimum=64)
+    levels: int = param(3, "Pyramid levels (factors 2^-k/2) per image; 3 covers scales 1/2 to 2.", minimum=1,
+                         maximum=5)
+    points: int = param(1000, "Keypoints kept at the first level (0.7 and 0.5 times that at the next two).",
+                        minimum=50)
+    hypotheses: int = param(6, "Rotation-scale hypotheses checked densely (10 gave nothing more).", minimum=1)
+    refine_best: int = param(3, "Hypotheses refined by local RIFT (5 gave nothing more).", minimum=1)
+    check_px: int = param(128, "Longest reference side for the dense check, px: keeps its 30 FFT trials per "
+                               "hypothesis cheap; where CFOG separated right from wrong poses best.", minimum=32)
+    local_px: int = param(384, "Longest reference side for local RIFT matching, px.", minimum=64)
+    min_inliers: int = param(8, "Fewest local-RIFT inliers for a refined hypothesis.", minimum=3)
+
+    def __post_init__(self):
+        validate(self)
+
+
+VOTE_ANGLE_DEG = 10.0  # rotation bin of the votes
+CHECK_SCALES = (2 ** -0.5, 2 ** -0.25, 1.0, 2 ** 0.25, 2 ** 0.5)  # the vote's scale is quantised to half octaves
+CHECK_SHIFT_PX = 12
+LOCAL_RADII = (0.08, 0.03)  # local search radius, share of the working size: coarse, then fine
+LOCAL_PATCH_PX = 72
+DESCRIPTOR_STEP = 2  # rotated patches sampled every 2 px: 4x cheaper, 64 samples per cell
+
+
+def _pyramid_features(image, valid, f0: float, levels: int, points: int):
+    """(keypoints full-res px, orientations rad, descriptors, level factors) over the pyramid."""
+    out = []
+    for k in range(levels):
+        f = f0 * 2 ** (-k / 2)
+        img, ok, s = resize(image, valid, f)
+        feats = rift.rotated_features(img, ok, int(points * (1.0, 0.7, 0.5, 0.4, 0.3)[k]), DESCRIPTOR_STEP)
+        xy = apply(invert(s), feats.keypoints.xy)
+        out.append((xy, np.radians(feats.keypoints.angle), feats.descriptors, np.full(len(xy), f)))
+    return [np.concatenate([o[i] for o in out]) for i in range(4)]
+
+
+def vote_hypotheses(t_feat, r_feat, n: int, seed: int) -> List[np.ndarray]:
+    """Similarity hypotheses (2 x 3) from nearest-neighbour matches voting in a (rotation, log2 scale)
+    histogram (``VOTE_ANGLE_DEG`` x half octaves, circularly smoothed over rotation); each of the
+    ``n`` strongest cells runs a similarity RANSAC on the matches within one bin of it."""
+    txy, tori, td, tf = t_feat
+    rxy, rori, rd, rf = r_feat
+    if len(txy) < 3 or len(rxy) < 3:
+        return []
+    d2 = (td ** 2).sum(1)[:, None] + (rd ** 2).sum(1)[None] - 2 * td @ rd.T
+    j = d2.argmin(axis=1)
+    turn = np.degrees(rori[j] - tori) % 360
+    na, ns = int(round(360 / VOTE_ANGLE_DEG)), 5
+    ai = np.floor(turn / VOTE_ANGLE_DEG).astype(int) % na
+    si = np.clip(np.round(np.log2(tf / rf[j]) * 2).astype(int) + 2, 0, ns - 1)
+    h = np.zeros((na, ns))
+    np.add.at(h, (ai, si), 1.0)
+    h = 0.5 * h + 0.25 * np.roll(h, 1, 0) + 0.25 * np.roll(h, -1, 0)
+    size = float(np.ptp(rxy, axis=0).max())
+    out, used = [], np.zeros_like(h, bool)
+    for o in np.argsort(-h.ravel(), kind="stable"):
+        a, s = divmod(int(o), ns)
+        if used[a, s]:
+            continue
+        used[[(a - 1) % na, a, (a + 1) % na], max(s - 1, 0):s + 2] = True
+        near = (np.abs((ai - a + na // 2) % na - na // 2) <= 1) & (np.abs(si - s) <= 1)
+        if near.sum() < 3:
+            continue
+        model, _ = ransac_or_none(txy[near], rxy[j[near]], "similarity", threshold_px=0.02 * size, rng=seed,
+                                  scale_range=(0.4, 2.5))
+        if model is not None:
+            out.append(model.matrix[:2])
+        if len(out) == n:
+            break
+    return out
+
+
+def _check(corr: ShiftCorrelator, pyr: TargetPyramid, m: np.ndarray, f_ref: float):
+    """Best (z, affine full-res target px -> full-res reference px) over ``CHECK_SCALES`` around ``m``."""
+    angle, scale = angle_scale(m)
+    sr = scaling(f_ref)
+    centre = np.array(pyr.shape_full[::-1]) / 2.0
+    to = apply(compose(sr, m), centre[None])[0]
+    best = (-np.inf, m)
+    for ds in CHECK_SCALES:
+        z, _, shifted = corr.best(pyr, similarity(angle, scale * ds * f_ref, centre, to), CHECK_SHIFT_PX)
+        if z > best[0]:
+            best = (z, compose(invert(sr), shifted))
+    return best
+
+
+class _LocalReference(dict):
+    """Reference-side work of local RIFT, done once per reference."""
+
+
+def local_rift(target, t_valid, reference, r_valid, m, params: XmodalParams, radius: float, seed: int,
+               cache: _LocalReference):
+    """Refine ``m`` by plain MIM matching between the reference and the target warped by ``m`` at
+    ``params.local_px``: mutual nearest neighbours within ``radius`` x the working size, then a
+    similarity RANSAC (3 px). Returns (refined m or None, target px (K, 2), reference px (K, 2) of
+    its inliers) in full-resolution working px."""
+    f = min(1.0, params.local_px / max(reference.shape))
+    if "ref" not in cache:
+        ref, rok, sr = resize(reference, r_valid, f)
+        cache["ref"] = (ref.shape, sr, rift.plain_features(ref, rok, 1500, LOCAL_PATCH_PX))
+    shape, sr, rfeat = cache["ref"]
+    fwd = compose(sr, m)
+    tw, tok = warp(target, t_valid, fwd, shape)
+    none = (None, np.zeros((0, 2)), np.zeros((0, 2)))
+    if tok.sum() < 0.05 * tok.size:
+        return none
+    tfeat = rift.plain_features(tw, tok, 1500, LOCAL_PATCH_PX)
+    txy, td, rxy, rd = tfeat.keypoints.xy, tfeat.descriptors, rfeat.keypoints.xy, rfeat.descriptors
+    if len(txy) < 4 or len(rxy) < 4:
+        return none
+    d2 = (td ** 2).sum(1)[:, None] + (rd ** 2).sum(1)[None] - 2 * td @ rd.T
+    d2[((txy[:, None, :] - rxy[None]) ** 2).sum(2) > (radius * max(shape)) ** 2] = np.inf
+    j = d2.argmin(axis=1)
+    ok = np.isfinite(d2[np.arange(len(j)), j]) & (d2.argmin(axis=0)[j] == np.arange(len(j)))
+    src, dst = txy[ok], rxy[j[ok]]
+    if len(src) < 4:
+        return none
+    model, inliers = ransac_or_none(src, dst, "similarity", threshold_px=3.0, rng=seed)
+    if model is None:
+        return none
+    back = invert(sr)
+    refined = compose(back, compose(model.matrix[:2], fwd))
+    return refined, apply(invert(fwd), src[inliers]), apply(back, dst[inliers])
+
+
+def match(target, reference, params: XmodalParams, monitor: Monitor, seed: int = 0) -> Matches:
+    """Working-pixel correspondences of the winning hypothesis' local RIFT inliers."""
+    t0 = time.perf_counter()
+    t_img, t_ok, r_img, r_ok = target.data, target.valid, reference.data, reference.valid
+    f = min(1.0, params.feat_px / max(r_img.shape))
+    t_feat = _pyramid_features(t_img, t_ok, f, params.levels, params.points)
+    monitor.report(0.3, "RIFT features")
+    r_feat = _pyramid_features(r_img, r_ok, f, params.levels, params.points)
+    monitor.report(0.55, "RIFT features")
+    hyps = vote_hypotheses(t_feat, r_feat, params.hypotheses, seed)
+    diag = {"n_hypotheses": len(hyps), "features_s": round(time.perf_counter() - t0, 3)}
+    if not hyps:
+        return Matches.empty(len(t_feat[0]), len(r_feat[0]))
+    f_c = params.check_px / max(r_img.shape)
+    ref_c, rok_c, _ = resize(r_img, r_ok, f_c)
+    corr = ShiftCorrelator(oriented_channels(ref_c, rok_c, 9, 1), rok_c, pad=CHECK_SHIFT_PX)
+    need = [angle_scale(h)[1] * f_c for h in hyps]
+    spread = max(CHECK_SCALES) / min(CHECK_SCALES)
+    hi, lo = max(need) * 2 ** 0.25 * spread ** 0.5, min(need) * 2 ** -0.25 / spread ** 0.5
+    pyr = TargetPyramid(t_img, t_ok, min(hi, 1.0), int(math.ceil(2 * math.log2(hi / lo))) + 2, bins=9, sub=4,
+                        min_factor=lo * 0.7)
+    checked = sorted((_check(corr, pyr, h, f_c) for h in hyps), key=lambda c: -c[0])
+    monitor.report(0.75, "pose check")
+    cache, best = _LocalReference(), (0, None, None, None)
+    for z, m in checked[:params.refine_best]:
+        found = (m, np.zeros((0, 2)), np.zeros((0, 2)))
+        for radius in LOCAL_RADII:
+            monitor.check()
+            new, src, dst = local_rift(t_img, t_ok, r_img, r_ok, found[0], params, radius, seed, cache)
+            if new is None or len(src) < params.min_inliers:
+                break
+            found = (new, src, dst)
+        if len(found[1]) > best[0]:
+            best = (len(found[1]), found[0], found[1], found[2])
+    monitor.report(1.0, "local RIFT")
+    n, m, src, dst = best
+    diag.update(z_best=round(float(checked[0][0]), 3), local_inliers=n, time_s=round(time.perf_counter() - t0, 3))
+    if m is not None:
+        diag["rotation_deg"], diag["scale"] = (round(v, 4) for v in angle_scale(m))
+    if n == 0:
+        return Matches(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0), len(t_feat[0]), len(r_feat[0]), diag)
+    return Matches(src, dst, np.ones(n), len(t_feat[0]), len(r_feat[0]), diag)
+
+
+METHOD = register_method(Method(
+    name="xmodal", title="Across modalities at any rotation and scale (RIFT votes + CFOG check + local RIFT)",
+    summary="Rotation- and scale-invariant matching for images of different modality (optical onto SAR, "
+            "infrared, depth, maps, night lights): RIFT phase-congruency features vote for rotation and scale, "
+            "each hypothesis is checked densely with CFOG, the best are refined by local RIFT matching; "
+            "full-resolution CFOG refinement.",
+    citation=CITATION, params_type=XmodalParams, match=match, ransac_threshold_px=4.0, refine="always",
+    refinement=STRUCTURAL_REFINEMENT))

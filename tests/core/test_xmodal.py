@@ -1,0 +1,76 @@
+"""RIFT features, the RIFT2 baseline and ``xmodal`` on real cross-modal pairs at any rotation."""
+import math
+
+import cv2
+import numpy as np
+import pytest
+
+from hamta.bench.multimodal_set import build
+from hamta.core import RegisterOptions, register
+from hamta.core.features import rift
+from hamta.core.features.phase_congruency import log_gabor_maps
+
+
+def _scene(size=256, seed=4):
+    rng = np.random.default_rng(seed)
+    img = np.zeros((size, size), np.float32)
+    for _ in range(40):
+        x, y = rng.integers(10, size - 40, 2)
+        w, h = rng.integers(8, 40, 2)
+        cv2.rectangle(img, (int(x), int(y)), (int(x + w), int(y + h)), float(rng.uniform(60, 250)), -1)
+    return cv2.GaussianBlur(img, (0, 0), 1.0)
+
+
+def test_maximum_index_map_follows_a_rotation_by_index_shifts():
+    img = _scene()
+    turned = np.ascontiguousarray(np.rot90(img))  # 90 degrees = 3 of the 6 orientations
+    a, b = log_gabor_maps(img)["mim"], log_gabor_maps(turned)["mim"]
+    inner = (slice(20, -20), slice(20, -20))
+    back = np.rot90(b, -1)[inner]
+    strong = log_gabor_maps(img)["cs"].max(axis=0)[inner] > np.percentile(log_gabor_maps(img)["cs"].max(axis=0), 70)
+    assert np.mean(((a[inner] + 3) % 6 == back)[strong]) > 0.8
+
+
+def test_rotation_invariant_descriptors_match_across_a_turn():
+    img = _scene()
+    valid = np.ones(img.shape, bool)
+    fa = rift.rotated_features(img, valid, 300)
+    turned = np.ascontiguousarray(np.rot90(img))
+    fb = rift.rotated_features(turned, valid, 300)
+    d2 = ((fa.descriptors[:, None] - fb.descriptors[None]) ** 2).sum(2)
+    j = d2.argmin(axis=1)
+    # np.rot90 (counter-clockwise) sends (x, y) to (y, W - x)
+    expected = np.column_stack([fa.keypoints.xy[:, 1], img.shape[1] - fa.keypoints.xy[:, 0]])
+    right = np.linalg.norm(fb.keypoints.xy[j] - expected, axis=1) < 3
+    assert right.mean() > 0.3 and right.sum() > 20
+
+
+@pytest.mark.parametrize("category,pair", [("mm-infrared", 1), ("mm-night", 13), ("mm-map", 1)])
+def test_xmodal_registers_real_cross_modal_pairs_and_the_check_verifies_them(shared, category, pair):
+    case = build(category, pair, str(shared / "data"))
+    result = register(case.target, case.reference, "xmodal", options=RegisterOptions(tolerance_px=15))
+    error = math.sqrt(np.mean(case.errors(result.model) ** 2))
+    assert error < 5.0 and result.verified, (error, result.verification.reasons)
+    assert result.diagnostics["local_inliers"] >= 20
+
+
+def test_xmodal_handles_a_further_half_turn(shared, tmp_path, raster_writer):
+    import rasterio
+
+    case = build("mm-infrared", 1, str(shared / "data"))
+    with rasterio.open(case.target) as ds:
+        data = ds.read()
+    turned = raster_writer("turned.tif", np.ascontiguousarray(data[:, ::-1, ::-1]))
+    result = register(turned, case.reference, "xmodal", options=RegisterOptions(tolerance_px=15))
+    h, w = data.shape[1:]
+    pts = case.check_points
+    flipped = np.column_stack([w - pts[:, 0], h - pts[:, 1]])  # the same ground points in the turned target
+    error = math.sqrt(np.mean(np.sum((result.model.apply(flipped) - case.truth(pts)) ** 2, axis=1)))
+    assert error < 8.0 and result.verified
+
+
+def test_rift_baseline_matches_a_pair_without_scale_change(shared):
+    case = build("mm-map", 1, str(shared / "data"))
+    result = register(case.target, case.reference, "rift", options=RegisterOptions(tolerance_px=15))
+    assert math.sqrt(np.mean(case.errors(result.model) ** 2)) < 10.0
+    assert result.stats["n_inliers"] >= 20
