@@ -248,8 +248,9 @@ def _crops(quick):
 
 
 def _should_fail(quick):
-    return [CaseSpec("should-fail", name, {"source": "landsat", "kind": name})
-            for name in trust.should_fail_names(quick)]
+    sources = ("landsat",) if quick else ("landsat", "multitemporal", "sar")
+    return [CaseSpec("should-fail", f"{src}_{kind}", {"source": src, "kind": kind})
+            for src in sources for kind in trust.should_fail_names(quick)]
 
 
 def _multimodal_set(family):

@@ -18,6 +18,7 @@ rescaling. ``published_truth=True`` scores against the files as published.
 from __future__ import annotations
 
 import os
+import warnings
 from typing import List
 
 import numpy as np
@@ -56,8 +57,10 @@ def build(family: str, pair: int, data_dir: str, published_truth: bool = False) 
     base = folder(data_dir, family)
     target, reference = os.path.join(base, f"pair{pair}_1.jpg"), os.path.join(base, f"pair{pair}_2.jpg")
     g = truth_matrix(os.path.join(base, f"gt_{pair}.txt"))
-    with rasterio.open(target) as t, rasterio.open(reference) as r:
-        (tw, th), (rw, rh) = (t.width, t.height), (r.width, r.height)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
+        with rasterio.open(target) as t, rasterio.open(reference) as r:
+            (tw, th), (rw, rh) = (t.width, t.height), (r.width, r.height)
     if CATEGORIES[family] == "Optical-SAR" and not published_truth:
         g = g @ np.diag([rw / tw, rh / th, 1.0])
     gx, gy = np.meshgrid((np.arange(20) + 0.5) * tw / 20, (np.arange(20) + 0.5) * th / 20)

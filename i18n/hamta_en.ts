@@ -4,12 +4,12 @@
 <context>
     <name>HamtaProvider</name>
     <message>
-        <location filename="../processing/provider.py" line="21"/>
+        <location filename="../processing/provider.py" line="28"/>
         <source>Hamta</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/provider.py" line="24"/>
+        <location filename="../processing/provider.py" line="31"/>
         <source>Hamta automatic georeferencing</source>
         <translation type="unfinished"></translation>
     </message>
@@ -17,303 +17,948 @@
 <context>
     <name>RegisterAlgorithm</name>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22"/>
+        <location filename="core_strings.py" line="4"/>
         <source>Similarity (Helmert)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22"/>
+        <location filename="core_strings.py" line="5"/>
         <source>Affine (polynomial 1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22"/>
+        <location filename="core_strings.py" line="6"/>
         <source>Projective</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22"/>
+        <location filename="core_strings.py" line="7"/>
         <source>Polynomial 2</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22"/>
+        <location filename="core_strings.py" line="8"/>
         <source>Polynomial 3</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="22"/>
+        <location filename="core_strings.py" line="9"/>
         <source>Thin plate spline</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30"/>
+        <location filename="core_strings.py" line="10"/>
         <source>Nearest neighbour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30"/>
+        <location filename="core_strings.py" line="11"/>
         <source>Bilinear</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30"/>
+        <location filename="core_strings.py" line="12"/>
         <source>Cubic</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30"/>
+        <location filename="core_strings.py" line="13"/>
         <source>Cubic B-spline</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="30"/>
+        <location filename="core_strings.py" line="14"/>
         <source>Lanczos</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="37"/>
+        <location filename="core_strings.py" line="15"/>
         <source>Automatic</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="37"/>
+        <location filename="core_strings.py" line="16"/>
         <source>Reference pixel grid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="37"/>
+        <location filename="core_strings.py" line="17"/>
         <source>Target&apos;s native resolution</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="42"/>
+        <location filename="core_strings.py" line="18"/>
         <source>Automatic (when images were decimated)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="42"/>
+        <location filename="core_strings.py" line="19"/>
         <source>Always</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="42"/>
+        <location filename="core_strings.py" line="20"/>
         <source>Never</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="47"/>
+        <location filename="core_strings.py" line="21"/>
         <source>Use when it overlaps the reference</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="47"/>
+        <location filename="core_strings.py" line="22"/>
         <source>Always use (fail otherwise)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="47"/>
+        <location filename="core_strings.py" line="23"/>
         <source>Ignore</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="87"/>
+        <location filename="../processing/register_algorithm.py" line="73"/>
         <source>Registration</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="96"/>
+        <location filename="../processing/register_algorithm.py" line="82"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="101"/>
+        <location filename="../processing/register_algorithm.py" line="93"/>
         <source>Target raster (to georeference)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="102"/>
+        <location filename="../processing/register_algorithm.py" line="94"/>
         <source>Reference raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="104"/>
+        <location filename="../processing/register_algorithm.py" line="95"/>
         <source>Transformation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="107"/>
+        <location filename="../processing/register_algorithm.py" line="96"/>
         <source>Resampling</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="109"/>
+        <location filename="../processing/register_algorithm.py" line="103"/>
         <source>Target band to match (empty: luminance of RGB, else band 1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="112"/>
+        <location filename="../processing/register_algorithm.py" line="106"/>
         <source>Reference band to match</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="115"/>
+        <location filename="../processing/register_algorithm.py" line="109"/>
         <source>Target&apos;s own georeferencing</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="118"/>
+        <location filename="../processing/register_algorithm.py" line="110"/>
         <source>Output pixel grid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="120"/>
+        <location filename="../processing/register_algorithm.py" line="111"/>
         <source>Full-resolution refinement</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="123"/>
+        <location filename="../processing/register_algorithm.py" line="112"/>
         <source>Working image size (pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="126"/>
-        <source>RANSAC tolerance (working pixels)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/register_algorithm.py" line="129"/>
+        <location filename="../processing/register_algorithm.py" line="118"/>
         <source>Maximum number of GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="132"/>
+        <location filename="../processing/register_algorithm.py" line="121"/>
         <source>Random seed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="137"/>
+        <location filename="../processing/register_algorithm.py" line="127"/>
         <source>Georeferenced raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="138"/>
+        <location filename="../processing/register_algorithm.py" line="128"/>
         <source>GCP points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="140"/>
+        <location filename="../processing/register_algorithm.py" line="130"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="140"/>
+        <location filename="../processing/register_algorithm.py" line="130"/>
         <source>GCP points (*.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="143"/>
+        <location filename="../processing/register_algorithm.py" line="133"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="143"/>
+        <location filename="../processing/register_algorithm.py" line="133"/>
         <source>VRT (*.vrt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146"/>
+        <location filename="../processing/register_algorithm.py" line="136"/>
         <source>Report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146"/>
+        <location filename="../processing/register_algorithm.py" line="136"/>
         <source>JSON (*.json)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="148"/>
+        <location filename="../processing/register_algorithm.py" line="140"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="141"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150"/>
+        <location filename="../processing/register_algorithm.py" line="142"/>
         <source>Number of GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="176"/>
+        <location filename="../processing/register_algorithm.py" line="172"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="220"/>
+        <location filename="../processing/register_algorithm.py" line="217"/>
         <source>GCP points must be written to a GeoPackage (.gpkg) file.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="238"/>
+        <location filename="../processing/register_algorithm.py" line="231"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="242"/>
-        <source>{} GCPs from {} matches; RMSE {:.3f} px, leave-one-out RMS {} px.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/register_algorithm.py" line="254"/>
+        <location filename="../processing/register_algorithm.py" line="283"/>
         <source>Register raster (SIFT baseline)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="255"/>
+        <location filename="../processing/register_algorithm.py" line="284"/>
         <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.&lt;br&gt;&lt;br&gt;Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="268"/>
+        <location filename="../processing/register_algorithm.py" line="297"/>
         <source>Register satellite image (RILBP, rotation-invariant)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="269"/>
+        <location filename="../processing/register_algorithm.py" line="298"/>
         <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="284"/>
+        <location filename="../processing/register_algorithm.py" line="313"/>
         <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="285"/>
+        <location filename="../processing/register_algorithm.py" line="314"/>
         <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="299"/>
+        <location filename="../processing/register_algorithm.py" line="328"/>
         <source>Register SAR image onto SAR image (ND-SIFT + phase congruency)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="301"/>
+        <location filename="../processing/register_algorithm.py" line="330"/>
         <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="317"/>
+        <location filename="../processing/register_algorithm.py" line="346"/>
         <source>Register SAR image onto optical image</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="318"/>
+        <location filename="../processing/register_algorithm.py" line="347"/>
         <source>Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale (up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method &apos;lines-spectral-faithful&apos; is the thesis&apos;s line-intersection matcher as written (Radon lines, eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register.&lt;br&gt;&lt;br&gt;References: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="97"/>
+        <source>Keep unverified results (write the outputs even when the independent check does not confirm the registration)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="100"/>
+        <source>Accuracy asked for (reference pixels): verified only within it</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="115"/>
+        <source>RANSAC tolerance (working pixels; empty: the method&apos;s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="138"/>
+        <source>Verdict of the independent check</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="139"/>
+        <source>Method that produced the result</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="234"/>
+        <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="249"/>
+        <source>Tried {}: {} ({:.1f} s) - {}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="255"/>
+        <source>Verified by an independent check: {} of {} sites agree; estimated error within {:.2f} px.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="258"/>
+        <source>NOT VERIFIED ({}): {}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="260"/>
+        <source>{} GCPs from {} matches; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="268"/>
+        <source>Register raster (automatic)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="269"/>
+        <source>Registers the target raster onto the reference raster and chooses the method itself: the fast SIFT matcher first, then matchers for images of different modality (SAR, infrared, maps) and for SAR, until a result passes an independent check. The check compares the two rasters at sites spread over the overlap, not the matches the model was fitted on, against what wrong alignments of the same rasters give, and bounds the remaining error. A result that does not verify is not written unless &apos;Keep unverified results&apos; is set; the log lists every method tried, its verdict and its time. The other algorithms of this group run one method each, for experts.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="366"/>
+        <source>Register across modalities at any rotation and scale</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="367"/>
+        <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.&lt;br&gt;&lt;br&gt;References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Processing 29:3296-3310; J. Li, Q. Hu and Y. Zhang (2023), Multimodal image matching: a scale-invariant algorithm and an open dataset, ISPRS Journal of Photogrammetry and Remote Sensing 204:77-88; Y. Ye et al. (2019), CFOG, IEEE TGRS 57(11):9059-9070.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="24"/>
+        <source>What the SAR (target) raster holds: amplitude, intensity or db.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="25"/>
+        <source>Lee speckle filter on the SAR image (the thesis).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="26"/>
+        <source>Lee window side, px (not given; 7).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="27"/>
+        <source>Equivalent number of looks of the SAR image (not given; 1).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="28"/>
+        <source>GGS window shape alpha (Shui &amp; Cheng&apos;s practical setting).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="29"/>
+        <source>GGS window width beta, px.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="30"/>
+        <source>GGS window length sigma_x, px (l_f = 13).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="31"/>
+        <source>GGS orientations P (not given; 8).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="32"/>
+        <source>Hysteresis low threshold on 1 - ratio (not given).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="33"/>
+        <source>Hysteresis high threshold on 1 - ratio (not given).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="34"/>
+        <source>Edge components smaller than this are removed (the thesis: 65).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="35"/>
+        <source>Radon peaks taken before clustering (not given; 40).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="36"/>
+        <source>Radon angle step, degrees (MATLAB&apos;s default 1).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="37"/>
+        <source>Fewest edge pixels on a line; 0 = Sui et al.&apos;s 15 px per 256 px of image side.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="38"/>
+        <source>Lines closer than this in angle ... (not given; 5).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="39"/>
+        <source>... and this in offset are one line (not given; 10).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="40"/>
+        <source>Line pairs crossing at less than this are not intersected (Sui et al.).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="41"/>
+        <source>Eigenvector matching, VSPM, or their fusion (the thesis).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="42"/>
+        <source>Fusion rule (not given): score-level sum, or cascade (VSPM&apos;s proximity inside eigenvector matching).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="43"/>
+        <source>Weight of the eigenvector score in the score-level fusion.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="44"/>
+        <source>Eigenvector proximity sigma as a fraction of each point set&apos;s RMS spread (not given).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="45"/>
+        <source>VSPM proximity matrix: as printed (eq. 2-73), laplacian or gaussian.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="46"/>
+        <source>Crossing angles of matched intersections differ by less (the thesis).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="47"/>
+        <source>Shapiro-Brady eigenvector matching alone (the thesis&apos;s baseline).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="48"/>
+        <source>VSPM alone (the thesis&apos;s baseline).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="49"/>
+        <source>What the target raster holds when it is SAR: amplitude, intensity or db (other images: leave amplitude).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="50"/>
+        <source>No Lee filter: CFOG&apos;s smoothing already averages speckle, and the filter measured no gain (multimodal proxy 8/8 either way; real pairs 0.85 vs 1.06 px median).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="51"/>
+        <source>Coarse transform: exhaustive CFOG search (default: it registers where the thesis&apos;s 5-8 matches cannot) or the thesis&apos;s lines.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="52"/>
+        <source>Rotations searched, +- degrees (georeferenced targets arrive north-up, so rotation is small).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="53"/>
+        <source>Scales searched, 1/max_scale .. max_scale (2 registers the scale family&apos;s 0.5-2, 10/10 against 6/10 for 1.5, for 26 % more time on a 1000 px pair).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="54"/>
+        <source>Longest reference side at the first search level, px.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="55"/>
+        <source>The search compares descriptors minus their local mean over this many first-level px: with the global mean (0) regional orientation statistics favoured wrong axis-aligned candidates (overlap family 8/10; 3 px: 10/10, 6 px: 9/10).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="56"/>
+        <source>Side of the CFOG templates, working px.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="57"/>
+        <source>Search radius of the first dense pass, working px (covers the coarse error).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="58"/>
+        <source>Weakest accepted template correlation; RANSAC removes the rest.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="59"/>
+        <source>Templates per dense pass.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="60"/>
+        <source>Coarse candidates checked by dense matching when the best is not convincing.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="61"/>
+        <source>What the SAR raster holds: amplitude, intensity or db (complex is read as amplitude).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="62"/>
+        <source>Scale space: nonlinear (the paper), gaussian or bilateral (baselines).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="63"/>
+        <source>Run on log amplitude, where speckle is additive and of one strength everywhere (not in the paper).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="64"/>
+        <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does: on 1-look speckle it turns 3 of 24 failures into successes (the paper starts from the original image).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="65"/>
+        <source>Octaves O (the paper: 4).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="66"/>
+        <source>Sub-levels S per octave (the paper: 3; S + 3 images per octave).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="67"/>
+        <source>Base scale sigma_0 (gap; Lowe&apos;s 1.6).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="68"/>
+        <source>ROEWA exponential weight alpha (gap; SAR-SIFT&apos;s 2).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="69"/>
+        <source>Contrast factor K = this percentile of the ROEWA gradient (gap; KAZE&apos;s 70).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="70"/>
+        <source>K is multiplied by this at each new octave (the paper: &apos;change K&apos;; AKAZE&apos;s 0.75).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="71"/>
+        <source>Gradient inside the conductance: roewa (the paper) or difference.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="72"/>
+        <source>DoG contrast threshold on the [0, 1] amplitude (gap; Lowe&apos;s 0.03).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="73"/>
+        <source>DoG edge ratio r (Lowe&apos;s 10).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="74"/>
+        <source>Drop keypoints whose phase congruency is below pc_threshold (the paper).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="75"/>
+        <source>Phase congruency threshold (the paper: 0.01).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="76"/>
+        <source>Kovesi&apos;s noise multiplier k (gap; his default 2).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="77"/>
+        <source>Range sigma of the bilateral scale space on the [0, 1] amplitude (BFSIFT baseline; not given).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="78"/>
+        <source>Ignore keypoints of the finest octave (BFSIFT does).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="79"/>
+        <source>Nearest/second-nearest ratio (the paper: 0.8).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="80"/>
+        <source>One-way ratio test: dual ratio matching keeps too few matches on 1-look speckle, and RANSAC removes the extra outliers (the paper: dual-ratio).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="81"/>
+        <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does (the paper starts from the original image).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="82"/>
+        <source>Dual matching: both directions pass the ratio test (the paper).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="83"/>
+        <source>NDSS+SIFT: the paper&apos;s ablation without phase congruency.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="84"/>
+        <source>Gaussian scale space (the paper&apos;s SIFT baseline).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="85"/>
+        <source>No phase congruency in the baseline.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="86"/>
+        <source>Bilateral-filter scale space (BFSIFT).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="87"/>
+        <source>No phase congruency in BFSIFT.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="88"/>
+        <source>BFSIFT skips the finest scale.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="89"/>
+        <source>Strongest keypoints kept per image.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="90"/>
+        <source>FAST corner threshold (OpenCV default).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="91"/>
+        <source>Pyramid levels, scale factor 1.2 (OpenCV default).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="92"/>
+        <source>Nearest/second-nearest Hamming distance ratio.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="93"/>
+        <source>Cross-check of matches: none, mutual or dual-ratio.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="94"/>
+        <source>Strongest SIFT keypoints kept per image (0 = all).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="95"/>
+        <source>Nearest/second-nearest distance ratio (as the SIFT baseline).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="96"/>
+        <source>Correspondences per side of the grid that carries the shift.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="97"/>
+        <source>Lowest accepted normalised correlation peak.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="98"/>
+        <source>Strongest FAST corners kept per image (RIFT: 5000).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="99"/>
+        <source>Strongest CenSurE keypoints kept per image (the paper: 2500).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="100"/>
+        <source>Smallest |CenSurE response| in grey levels (gap: paper uses CenSurE defaults without values).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="101"/>
+        <source>CenSurE&apos;s edge test limit on trace^2/det (Agrawal et al. 2008).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="102"/>
+        <source>Region radius = factor x half the outer octagon (gap in the paper).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="103"/>
+        <source>Product: quadratic sub-pixel keypoint positions (CenSurE keeps whole pixels).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="104"/>
+        <source>Nearest/second-nearest distance ratio (gap: the paper&apos;s rule is not given).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="105"/>
+        <source>LBP neighbour radius in region pixels (gap; the paper&apos;s figure shows 1; 2 keeps codes stable under keypoint and resampling jitter).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="106"/>
+        <source>Product: Gaussian sigma (region pixels) before coding; the paper has none, and radius-1 codes on raw pixels flip on sensor noise.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="107"/>
+        <source>CS-LBP threshold T in grey levels (gap; 0 = exact gain/offset invariance).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="108"/>
+        <source>Ring weight: literal 1-(d/h)^2 (the paper) or border 1-(2d/h)^2.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="109"/>
+        <source>Faithful: whole-pixel CenSurE positions, as the paper.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="110"/>
+        <source>Faithful: radius 1, the paper&apos;s Fig. 1.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="111"/>
+        <source>Faithful: no smoothing, as the paper.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="112"/>
+        <source>Faithful: whole-pixel CenSurE positions, as in the paper&apos;s comparison.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="113"/>
+        <source>Sobel magnitude threshold T (0..255; gap in the paper, default from a sweep).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="114"/>
+        <source>Hamming distance under which a keypoint with a near-duplicate in its own image is removed (gap; from a sweep).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="115"/>
+        <source>Gradient magnitude: l1 = 0.5|Gx|+0.5|Gy| (OpenCV tutorial, the spec&apos;s reading) or l2 = sqrt(Gx^2+Gy^2)/sqrt(2), which does not change with edge direction.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="116"/>
+        <source>to-zero keeps magnitudes above T (the paper); soft subtracts T, so the edge image has no jumps at the threshold for the DoG to fire on.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="117"/>
+        <source>Resolution at which the DoG pyramid starts (2 = OpenCV SIFT&apos;s upsampled base, the paper&apos;s; 1 = full resolution, 4x less work).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="118"/>
+        <source>Strongest DoG keypoints kept per image (0 = all, as the paper).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="119"/>
+        <source>SIFT DoG contrast threshold on the edge image (OpenCV default).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="120"/>
+        <source>Describe each keypoint on the pyramid level matching its SIFT size (the paper uses a fixed 31-px patch, which breaks beyond ~1.5x scale).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="121"/>
+        <source>Lowe ratio on Hamming distances (1 = off, as the paper).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="122"/>
+        <source>Spec Appendix B (not in the paper): keep matches at the peaks of the angle and log-scale difference histograms.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="123"/>
+        <source>Faithful: OpenCV tutorial magnitude 0.5|Gx|+0.5|Gy|.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="124"/>
+        <source>Faithful: threshold-to-zero.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="125"/>
+        <source>Faithful: OpenCV SIFT as is (upsampled base).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="126"/>
+        <source>Faithful: every DoG keypoint.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="127"/>
+        <source>Faithful: one 31-px patch at full resolution for every keypoint.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="128"/>
+        <source>Faithful: mutual nearest neighbours without a ratio test.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="129"/>
+        <source>Strongest keypoints kept per image (0 = all).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="130"/>
+        <source>DoG contrast threshold (OpenCV default, Lowe 2004).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="131"/>
+        <source>Edge-response ratio limit (Lowe 2004).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="132"/>
+        <source>Lowe&apos;s nearest/second-nearest distance ratio.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="133"/>
+        <source>Longest reference side for feature extraction, px: enough detail for RIFT features, and their cost.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="134"/>
+        <source>Pyramid levels (factors 2^-k/2) per image; 3 covers scales 1/2 to 2.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="135"/>
+        <source>Keypoints kept at the first level (0.7 and 0.5 times that at the next two).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="136"/>
+        <source>Rotation-scale hypotheses checked densely (10 gave nothing more).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="137"/>
+        <source>Hypotheses refined by local RIFT (5 gave nothing more).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="138"/>
+        <source>Longest reference side for the dense check, px: keeps its 30 FFT trials per hypothesis cheap; where CFOG separated right from wrong poses best.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="139"/>
+        <source>Longest reference side for local RIFT matching, px.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="140"/>
+        <source>Fewest local-RIFT inliers for a refined hypothesis.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -9,6 +9,7 @@ from qgis.PyQt.QtGui import QIcon
 
 from .register_algorithm import (
     RegisterAutoAlgorithm,
+    RegisterCrossModalAlgorithm,
     RegisterNdsiftAlgorithm,
     RegisterRilbpAlgorithm,
     RegisterSarOpticalAlgorithm,
@@ -34,7 +35,8 @@ class HamtaProvider(QgsProcessingProvider):
 
     def loadAlgorithms(self):
         for alg in (RegisterAutoAlgorithm(), RegisterSiftAlgorithm(), RegisterRilbpAlgorithm(),
-                    RegisterSibrifAlgorithm(), RegisterNdsiftAlgorithm(), RegisterSarOpticalAlgorithm()):
+                    RegisterSibrifAlgorithm(), RegisterNdsiftAlgorithm(), RegisterSarOpticalAlgorithm(),
+                    RegisterCrossModalAlgorithm()):
             self.addAlgorithm(alg)
 
     def supportedOutputRasterLayerExtensions(self):

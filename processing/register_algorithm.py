@@ -358,3 +358,21 @@ class RegisterSarOpticalAlgorithm(RegisterAlgorithm):
         "thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), "
         "Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on "
         "Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684")
+
+
+class RegisterCrossModalAlgorithm(RegisterAlgorithm):
+    METHOD = "xmodal"
+    ALG_NAME = "registercrossmodal"
+    DISPLAY_NAME = QT_TRANSLATE_NOOP("RegisterAlgorithm", "Register across modalities at any rotation and scale")
+    HELP = QT_TRANSLATE_NOOP(
+        "RegisterAlgorithm",
+        "Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, "
+        "night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) "
+        "features vote for rotation and scale, each hypothesis is checked densely with CFOG structural "
+        "descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the "
+        "result is refined at full resolution with CFOG and checked independently. Its baseline, the published "
+        "RIFT2 matcher, is the CLI method 'rift'.<br><br>References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE "
+        "Transactions on Image Processing 29:3296-3310; J. Li, Q. Hu and Y. Zhang (2023), Multimodal image "
+        "matching: a scale-invariant algorithm and an open dataset, ISPRS Journal of Photogrammetry and Remote "
+        "Sensing 204:77-88; Y. Ye et al. (2019), CFOG, IEEE TGRS 57(11):9059-9070.")
+

@@ -102,7 +102,8 @@ def test_enum_labels_follow_the_core_choices(provider):
 
 def test_every_method_algorithm_is_listed(provider):
     ids = {a.name() for a in provider.algorithms()}
-    assert {"registersift", "registerrilbp", "registersibrif", "registerndsift", "registersaroptical"} <= ids
+    assert {"registerauto", "registersift", "registerrilbp", "registersibrif", "registerndsift", "registersaroptical",
+            "registercrossmodal"} <= ids
     sibrif = provider.algorithm("registersibrif")
     enum = next(p for p in sibrif.parameterDefinitions() if p.name() == "P_MAGNITUDE")
     assert enum.options() == ["l1", "l2"]
