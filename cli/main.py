@@ -4,11 +4,12 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
 import time
 from typing import List, Optional
 
-from ..core.errors import HamtaError
+from ..core.errors import HamtaError, RegistrationCanceled
 from .progress import ProgressBar
 
 # Exit codes (documented in the README).
@@ -32,7 +33,6 @@ def _pairs(values: List[str]) -> dict:
 def cmd_register(args) -> int:
     from ..core import OutputOptions, RegisterOptions, UnverifiedResult, run
     from ..core.outputs import OutputPaths
-    from ..core.outputs.atomic import check_writable_folder
 
     options = RegisterOptions(model=args.model, max_working_pixels=args.max_working_pixels,
                               ransac_threshold_px=args.ransac_threshold, seed=args.seed, refine=args.refine,
@@ -40,7 +40,6 @@ def cmd_register(args) -> int:
                               target_band=args.target_band, reference_band=args.reference_band,
                               tolerance_px=args.tolerance, auto_budget_s=args.auto_budget)
     output = OutputOptions(resampling=args.resampling, grid=args.grid)
-    check_writable_folder(args.out)
     try:
         result, written = run(args.target, args.reference, OutputPaths.in_folder(args.out, vrt=args.vrt),
                               method=args.method, params=_pairs(args.param), options=options, output=output,
@@ -82,8 +81,13 @@ def cmd_map_points(args) -> int:
     from ..core.mapping import map_points_from_report
 
     if len(args.coords) % 2:
-        raise SystemExit("hamta map-points: coordinates come in X Y pairs")
-    xy = [(float(args.coords[i]), float(args.coords[i + 1])) for i in range(0, len(args.coords), 2)]
+        raise ValueError(f"map-points takes X Y pairs of target pixels; got {len(args.coords)} numbers")
+    try:
+        values = [float(v) for v in args.coords]
+    except ValueError:
+        raise ValueError("map-points takes numbers (X Y pairs of target pixels), got "
+                         f"{' '.join(args.coords)}") from None
+    xy = [(values[i], values[i + 1]) for i in range(0, len(values), 2)]
     rows = map_points_from_report(args.report, xy)
     if args.json:
         print(json.dumps(rows, indent=1))
@@ -247,19 +251,51 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Optional[List[str]] = None) -> int:
+    """Run one ``hamta`` command; returns its exit code (see ``EXIT_*``); never shows a traceback
+    unless ``HAMTA_DEBUG`` is set."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    previous = _terminate_as_interrupt()
     try:
-        return args.func(args)
+        code = args.func(args)
+        sys.stdout.flush()  # a closed pipe shows here, not at exit
+        return code
     except KeyboardInterrupt:
-        print("hamta: interrupted; nothing was written", file=sys.stderr)
+        print("hamta: interrupted; no output was published", file=sys.stderr)
         return EXIT_CANCELED
+    except RegistrationCanceled as exc:
+        print(f"hamta: {exc}", file=sys.stderr)
+        return EXIT_CANCELED
+    except BrokenPipeError:  # the reader went away (e.g. ``hamta methods | head``): stop quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_OK
     except HamtaError as exc:
         print(f"hamta: error: {exc}", file=sys.stderr)
         return EXIT_ERROR
     except (ValueError, argparse.ArgumentTypeError) as exc:
         print(f"hamta: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
+    except Exception as exc:  # a bug: say so plainly, without a traceback
+        if os.environ.get("HAMTA_DEBUG"):
+            raise
+        print(f"hamta: internal error ({type(exc).__name__}: {exc}). No output was published. Please report it; "
+              "HAMTA_DEBUG=1 shows the details.", file=sys.stderr)
+        return EXIT_ERROR
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+def _terminate_as_interrupt():
+    """Make SIGTERM stop a run like Ctrl-C (staged outputs are removed); returns the old handler."""
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    try:
+        return signal.signal(signal.SIGTERM, interrupt)
+    except ValueError:  # not the main thread
+        return None
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@ the only place method defaults are resolved.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from typing import Mapping, Optional, Tuple
 
@@ -158,14 +159,27 @@ class RegisterOptions:
         TARGET_GEOREF.check(self.target_georef)
         if self.robust is not None:
             ROBUST.check(self.robust)
-        if self.max_working_pixels < 4096:
-            raise ValueError("max_working_pixels must be at least 4096")
-        if self.ransac_threshold_px is not None and self.ransac_threshold_px <= 0:
-            raise ValueError("ransac_threshold_px must be positive")
-        if not self.tolerance_px > 0:
-            raise ValueError(f"tolerance_px must be positive, got {self.tolerance_px}")
-        if not self.auto_budget_s >= 0:
-            raise ValueError(f"auto_budget_s must be zero or more, got {self.auto_budget_s}")
+        _whole("max_working_pixels", self.max_working_pixels, 4096)
+        _whole("seed", self.seed, 0)
+        _whole("max_gcps", self.max_gcps, 3)
+        for name in ("min_inliers", "target_band", "reference_band"):
+            if getattr(self, name) is not None:
+                _whole(name, getattr(self, name), 3 if name == "min_inliers" else 1)
+        if self.ransac_threshold_px is not None:
+            _number("ransac_threshold_px", self.ransac_threshold_px, positive=True)
+        _number("tolerance_px", self.tolerance_px, positive=True)
+        _number("auto_budget_s", self.auto_budget_s, positive=False)
+
+
+def _whole(name: str, value, minimum: int) -> None:
+    if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
+        raise ValueError(f"{name} must be a whole number of at least {minimum}, got {value!r}")
+
+
+def _number(name: str, value, positive: bool) -> None:
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    if not ok or value < 0 or (positive and value == 0):
+        raise ValueError(f"{name} must be a finite number {'above' if positive else 'of at least'} 0, got {value!r}")
 
 
 def resolve_options(options: RegisterOptions, method) -> RegisterOptions:
@@ -196,5 +210,5 @@ class OutputOptions:
     def __post_init__(self):
         RESAMPLING.check(self.resampling)
         GRID.check(self.grid)
-        if self.resolution is not None and not self.resolution > 0:
-            raise ValueError(f"resolution must be positive, got {self.resolution}")
+        if self.resolution is not None:
+            _number("resolution", self.resolution, positive=True)

@@ -63,6 +63,7 @@ class RegistrationResult:
     correspondences: Optional[Correspondences] = None
     verification: Optional[Verification] = None
     auto: Optional[dict] = None
+    run_id: Optional[str] = None  # set when outputs are written: every file of one set carries it
 
     @property
     def verified(self) -> bool:

@@ -7,12 +7,16 @@ written (when asked for), and :class:`UnverifiedResult` says why.
 """
 from __future__ import annotations
 
+import os
 from typing import Dict, Optional, Tuple
 
 from .auto import AUTO
-from .errors import UnverifiedResult
+from .errors import OutputError, UnverifiedResult
+from .io.raster import input_files, open_raster
+from .methods import get_method
 from .options import OutputOptions, RegisterOptions
 from .outputs import OutputPaths, write_outputs
+from .outputs.atomic import check_creatable_folder
 from .outputs.tags import verdict_text
 from .pipeline import register
 from .progress import Monitor
@@ -37,6 +41,13 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
         The result did not verify and ``accept_unverified`` is False (its report is written).
     """
     monitor = Monitor(progress, is_canceled)
+    if method == AUTO:
+        if params:
+            raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
+    else:
+        get_method(method).make_params(params)  # a wrong name or parameter fails before any work
+    if paths is not None and paths.as_dict():
+        check_destinations(paths, [open_raster(target, "target"), open_raster(reference, "reference")])
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
     stage = monitor.span(0.0, share)
     result = register(target, reference, method=method, params=params, options=options,
@@ -46,11 +57,25 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     stage = monitor.span(share, 1.0)
     if not result.verified and not accept_unverified:
         written = {}
-        if paths.report:
-            written = write_outputs(result, OutputPaths(report=paths.report), output=output, is_canceled=is_canceled)
+        if paths.report:  # the report says why; in a run folder it replaces the previous set whole
+            written = write_outputs(result, OutputPaths(report=paths.report, folder=paths.folder), output=output,
+                                    is_canceled=is_canceled)
         raise UnverifiedResult(f"The registration of '{result.target.path}' is {verdict_text(result)}. No "
                                "georeferenced output was written; accept unverified results to write it anyway.",
                                result, written)
     written = write_outputs(result, paths, output=output, progress=lambda f, m: stage.report(f, m),
                             is_canceled=is_canceled)
     return result, written
+
+
+def check_destinations(paths: OutputPaths, inputs) -> None:
+    """Before any work: every destination can be written, and none is an input or a file an input
+    reads (a VRT's sources, sidecar files)."""
+    paths.check()
+    for folder in {os.path.dirname(os.path.abspath(p)) for p in paths.as_dict().values()}:
+        check_creatable_folder(folder)
+    read = {os.path.realpath(f) for info in inputs for f in input_files(info)}
+    for kind, path in paths.as_dict().items():
+        if os.path.realpath(path) in read:
+            raise OutputError(f"The output '{path}' ({kind}) is one of the input files or a file they read; "
+                              "choose another output path (inputs are never overwritten).")

@@ -6,7 +6,8 @@ choice, so an enum index always means the value it was shown for.
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, Dict, Mapping
+import re
+from typing import Any, Dict, Mapping, Tuple
 
 from ..core.options import GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF, OutputOptions, RegisterOptions
 from ..core.outputs import OutputPaths
@@ -59,7 +60,24 @@ def register_settings(values: Mapping[str, Any]):
         reference_band=values.get("REFERENCE_BAND") or None,
         tolerance_px=float(values.get("TOLERANCE") or d.tolerance_px),
     )
+    gpkg, layer = vector_destination(values.get("GCP_LAYER") or "")
     paths = OutputPaths(geotiff=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,
-                        gpkg=values.get("GCP_LAYER") or None, vrt=values.get("GCP_VRT") or None,
+                        gpkg=gpkg or None, gpkg_layer=layer, vrt=values.get("GCP_VRT") or None,
                         report=values.get("REPORT") or None)
     return options, paths, OutputOptions(resampling=_enum(values, "RESAMPLING"), grid=_enum(values, "GRID"))
+
+
+_OGR_URI = re.compile(r"""^ogr:dbname=(?P<q>['"]?)(?P<path>.+?)(?P=q)(\s+table=(?P<t>['"]?)(?P<table>[^'"]+)(?P=t))?"""
+                      r"""(\s+\(\w+\))?\s*$""")
+
+
+def vector_destination(value: str) -> Tuple[str, str]:
+    """(GeoPackage path, layer name) of a Processing vector destination: a plain path, or the
+    ``ogr:dbname='x.gpkg' table="name" (geom)`` form QGIS uses to add a layer to an existing file."""
+    value = (value or "").strip()
+    match = _OGR_URI.match(value)
+    if match:
+        return match.group("path"), match.group("table") or "gcps"
+    path, _, options = value.partition("|")
+    layer = options.split("layername=", 1)[1].split("|")[0] if "layername=" in options else "gcps"
+    return path, layer

@@ -213,9 +213,10 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         target = self._raster_path(parameters, self.TARGET, context)
         reference = self._raster_path(parameters, self.REFERENCE, context)
         values = self._values(parameters, context)
-        if values[self.GCP_LAYER] and not values[self.GCP_LAYER].lower().endswith(".gpkg"):
-            raise QgsProcessingException(self.tr("GCP points must be written to a GeoPackage (.gpkg) file."))
         options, paths, output = register_settings(values)
+        if paths.gpkg and not paths.gpkg.lower().endswith(".gpkg"):
+            raise QgsProcessingException(self.tr("GCP points are written to a GeoPackage: choose a .gpkg file (got "
+                                                 "'{}').").format(values[self.GCP_LAYER]))
 
         def progress(fraction, message):
             feedback.setProgress(100.0 * fraction)
@@ -236,9 +237,17 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
                 "results' to write it anyway.").format("; ".join(exc.result.verification.reasons))) from None
         except HamtaError as exc:
             raise QgsProcessingException(str(exc)) from None
+        except ValueError as exc:
+            raise QgsProcessingException(self.tr("Invalid parameter: {}").format(exc)) from None
+        except Exception as exc:  # a bug: a clear message, never a raw traceback in the dialog
+            message = self.tr("Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.")
+            raise QgsProcessingException(message.format(type(exc).__name__, exc)) from None
         self._log(result, feedback)
         s = result.stats
-        results = {self.OUTPUT: written.get("geotiff"), self.GCP_LAYER: written.get("gpkg"),
+        layer = written.get("gpkg")
+        if layer and paths.gpkg_layer != "gcps":
+            layer = f"{layer}|layername={paths.gpkg_layer}"
+        results = {self.OUTPUT: written.get("geotiff"), self.GCP_LAYER: layer,
                    self.GCP_POINTS: written.get("points"), self.GCP_VRT: written.get("vrt"),
                    self.REPORT: written.get("report"), "RMSE_PX": s["rmse_px"], "RMS_LOO_PX": s["rms_loo_px"],
                    "N_GCPS": s["n_gcps"], "VERDICT": result.verification.verdict, "METHOD": result.method}

@@ -253,11 +253,14 @@ class ThinPlateSplineModel:
     def _q(self, xy) -> np.ndarray:
         return (as_xy(xy) - self.center) / self.scale
 
-    def apply(self, xy, chunk: int = 8192) -> np.ndarray:
+    def apply(self, xy, max_cells: int = 4_000_000) -> np.ndarray:
+        """Evaluate in chunks of points so that the kernel matrix stays within ``max_cells`` values
+        (memory bounded however many control points there are)."""
         q = self._q(xy)
         c = (self.control - self.center) / self.scale
         c2 = (c ** 2).sum(axis=1)
         out = np.empty_like(q)
+        chunk = max(1, max_cells // max(len(c), 1))
         for i in range(0, len(q), chunk):
             part = q[i:i + chunk]
             r2 = np.maximum((part ** 2).sum(axis=1)[:, None] + c2[None, :] - 2.0 * part @ c.T, 0.0)

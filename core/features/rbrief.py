@@ -23,9 +23,9 @@ ORB_BORDER = 31  # OpenCV's edgeThreshold for a 31-pixel patch
 def intensity_centroid_angle(gray: np.ndarray, xy: np.ndarray, radius: int = 15) -> np.ndarray:
     """Angle in degrees (OpenCV's convention: image axes, y down, 0..360) of the intensity centroid
     of a disk of ``radius`` around each keypoint (corner-convention ``xy``, rounded to a pixel)."""
-    if len(xy) == 0:
-        return np.zeros(0)
     h, w = gray.shape
+    if len(xy) == 0 or min(h, w) < 2 * radius + 1:  # no full disk fits: ORB drops such keypoints anyway
+        return np.zeros(len(xy))
     col = np.floor(xy[:, 0]).astype(int)
     row = np.floor(xy[:, 1]).astype(int)
     off = np.arange(-radius, radius + 1)

@@ -111,7 +111,7 @@ def describe_rotated(mim: np.ndarray, xy: np.ndarray, angle: np.ndarray, step: i
         dominant = h.sum(axis=(1, 2)).argmax(axis=1)
         roll = (np.arange(norient)[None] + dominant[:, None]) % norient
         out[s:s + chunk] = np.take_along_axis(h, roll[:, None, None, :], axis=3)
-    return _normalised(out.reshape(len(xy), -1))
+    return _normalised(out.reshape(len(xy), GRID * GRID * norient))
 
 
 def describe_plain(mim: np.ndarray, xy: np.ndarray, patch: int, norient: int = NORIENT) -> np.ndarray:
@@ -127,10 +127,12 @@ def describe_plain(mim: np.ndarray, xy: np.ndarray, patch: int, norient: int = N
         for j in range(GRID):
             xa, xb = np.clip(x0 + edges[j], 0, w), np.clip(x0 + edges[j + 1], 0, w)
             out[:, i, j] = ii[yb, xb] - ii[ya, xb] - ii[yb, xa] + ii[ya, xa]
-    return _normalised(out.reshape(len(xy), -1))
+    return _normalised(out.reshape(len(xy), GRID * GRID * norient))
 
 
 def _normalised(d: np.ndarray) -> np.ndarray:
+    if len(d) == 0:
+        return d.astype(np.float32)
     return d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-12)
 
 

@@ -7,6 +7,7 @@ bounded by the requested output size and not by the file size. Pixel coordinates
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import warnings
@@ -17,7 +18,7 @@ import numpy as np
 import rasterio
 from affine import Affine
 from rasterio.enums import ColorInterp, MaskFlags, Resampling
-from rasterio.errors import NotGeoreferencedWarning, RasterioIOError
+from rasterio.errors import NotGeoreferencedWarning, RasterioError
 from rasterio.windows import Window
 
 from ..errors import InputError
@@ -96,8 +97,9 @@ def open_raster(path, role: str = "input") -> RasterInfo:
             warnings.simplefilter("ignore", NotGeoreferencedWarning)
             with rasterio.open(path) as ds:
                 return _describe(ds, path, role)
-    except RasterioIOError as exc:
-        raise InputError(f"The {role} raster '{path}' is not a raster GDAL can read ({exc}).") from None
+    except (RasterioError, OSError, RecursionError) as exc:
+        raise InputError(f"The {role} raster '{path}' is not a raster GDAL can read, or it is truncated or corrupt "
+                         f"({str(exc).strip() or type(exc).__name__}).") from None
 
 
 def _describe(ds, path: str, role: str) -> RasterInfo:
@@ -188,7 +190,7 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
     inside = (window.col_off >= 0 and window.row_off >= 0 and window.col_off + window.width <= info.width
               and window.row_off + window.height <= info.height)
     full_shape = (len(bands),) + tuple(shape)
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), _read_errors_named(info):
         warnings.simplefilter("ignore", NotGeoreferencedWarning)
         with (_borrowed(dataset) if dataset is not None else rasterio.open(info.path)) as ds:
             if info.is_complex and decimating:
@@ -207,6 +209,17 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
     image = np.tensordot(LUMINANCE, data, axes=1) if len(bands) == 3 else data[0]
     image = np.where(valid, image, 0).astype(np.float32, copy=False)
     return image, valid
+
+
+@contextlib.contextmanager
+def _read_errors_named(info: RasterInfo):
+    """GDAL read failures (a truncated or corrupt file, a VRT whose source is gone) as
+    :class:`InputError` naming the raster."""
+    try:
+        yield
+    except (RasterioError, OSError) as exc:
+        raise InputError(f"The raster '{info.path}' could not be read: it may be truncated or corrupt, or a file it "
+                         f"refers to is missing ({str(exc).strip() or type(exc).__name__}).") from None
 
 
 class _borrowed:
@@ -267,3 +280,15 @@ def budget_shape(width: float, height: float, max_pixels: int) -> Tuple[Tuple[in
     """Output (rows, cols) of a ``width x height`` window within ``max_pixels``, and the factor."""
     factor = max(1.0, math.sqrt(width * height / float(max_pixels)))
     return (max(1, int(round(height / factor))), max(1, int(round(width / factor)))), factor
+
+
+def input_files(info: RasterInfo) -> Tuple[str, ...]:
+    """Every file reading ``info`` touches: the raster, its sidecars, a VRT's sources."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NotGeoreferencedWarning)
+        try:
+            with rasterio.open(info.path) as ds:
+                files = tuple(ds.files)
+        except RasterioError:
+            files = ()
+    return (info.path,) + files

@@ -158,7 +158,13 @@ def _read_whole(info: RasterInfo, bands, max_pixels: int, role: str) -> WorkingI
     return WorkingImage(data, valid, to_source, info, bands, factor)
 
 
+MIN_SIDE_PX = 16  # smaller than a matching window of any method
+
+
 def _check_content(data, valid, info: RasterInfo, role: str, where: str) -> None:
+    if min(data.shape) < MIN_SIDE_PX:
+        raise InputError(f"The {role} raster '{info.path}' is too small to register{where}: {data.shape[1]} x "
+                         f"{data.shape[0]} px at working resolution (at least {MIN_SIDE_PX} px per side).")
     n_valid = int(valid.sum())
     if n_valid < 64:
         raise InputError(f"The {role} raster '{info.path}' has no valid pixels{where} "

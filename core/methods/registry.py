@@ -6,6 +6,7 @@ imports the built-in method modules on first use.
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Mapping, Optional
 
@@ -91,7 +92,15 @@ def _convert(field: dataclasses.Field, value):
             return False
         raise ValueError(f"parameter {field.name} expects true/false, got {value!r}")
     if kind in (int, float):
-        return kind(value)
+        try:
+            number = float(value)
+        except ValueError:
+            raise ValueError(f"parameter {field.name} expects a number, got {value!r}") from None
+        if kind is int:
+            if not math.isfinite(number) or number != int(number):
+                raise ValueError(f"parameter {field.name} expects a whole number, got {value!r}")
+            return int(number)
+        return number
     return value
 
 
@@ -109,6 +118,13 @@ def validate(params) -> None:
     for f in dataclasses.fields(params):
         v = getattr(params, f.name)
         lo, hi, choices = f.metadata.get("minimum"), f.metadata.get("maximum"), f.metadata.get("choices")
+        kind = type(f.default)
+        if kind in (int, float) and (isinstance(v, bool) or not isinstance(v, (int, float))):
+            raise ValueError(f"parameter {f.name} expects a number, got {v!r}")
+        if kind is int and isinstance(v, float):
+            raise ValueError(f"parameter {f.name} expects a whole number, got {v!r}")
+        if kind in (int, float) and not math.isfinite(v):
+            raise ValueError(f"parameter {f.name} must be a finite number, got {v}")
         if lo is not None and v < lo:
             raise ValueError(f"parameter {f.name} must be >= {lo}, got {v}")
         if hi is not None and v > hi:

@@ -1,20 +1,25 @@
 """Writing a registration's outputs: GeoTIFF, GCP VRT, QGIS ``.points``, GeoPackage, report.
 
-:func:`write_outputs` writes every requested file through temporary names and renames them only
-when all succeeded, so outputs appear whole or not at all.
+:func:`write_outputs` writes every requested file into a staging folder and publishes them as one
+set (:mod:`hamta.core.outputs.atomic`), so outputs appear whole or not at all and never mixed with
+another run's.
 """
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import errno
 import os
+import uuid
 from dataclasses import dataclass, fields
 from typing import Dict, Optional
 
+from ..errors import OutputError
 from ..options import OutputOptions
 from ..progress import Monitor
-from .atomic import OutputSet, check_writable_folder
+from .atomic import OutputSet, check_output_path, check_writable_folder
 from .geotiff import write_geotiff, write_vrt
-from .gpkg import write_gcp_layer
+from .gpkg import is_geopackage, write_gcp_layer
 from .points import write_points
 from .report import write_report
 
@@ -28,16 +33,31 @@ class OutputPaths:
     gpkg: Optional[str] = None
     vrt: Optional[str] = None
     report: Optional[str] = None
+    folder: Optional[str] = None  # a run folder whose whole set of names belongs to Hamta (the CLI layout)
+    gpkg_layer: str = "gcps"  # the GCP layer's name; other layers of an existing GeoPackage are kept
+
+    LAYOUT = {"geotiff": "registered.tif", "points": "gcps.points", "gpkg": "gcps.gpkg", "vrt": "gcps.vrt",
+              "report": "report.json"}
 
     @classmethod
     def in_folder(cls, folder: str, vrt: bool = False) -> "OutputPaths":
-        """The CLI layout: registered.tif, gcps.points, gcps.gpkg, report.json (+ gcps.vrt)."""
-        j = lambda name: os.path.join(folder, name)  # noqa: E731
-        return cls(j("registered.tif"), j("gcps.points"), j("gcps.gpkg"), j("gcps.vrt") if vrt else None,
-                   j("report.json"))
+        """The CLI layout: registered.tif, gcps.points, gcps.gpkg, report.json (+ gcps.vrt). Publishing
+        there replaces the folder's previous set whole (a rerun without ``vrt`` removes gcps.vrt)."""
+        names = {k: os.path.join(folder, v) for k, v in cls.LAYOUT.items() if vrt or k != "vrt"}
+        return cls(folder=folder, **names)
 
     def as_dict(self) -> Dict[str, str]:
-        return {f.name: getattr(self, f.name) for f in fields(self) if getattr(self, f.name)}
+        return {f.name: getattr(self, f.name) for f in fields(self)
+                if getattr(self, f.name) and f.name not in ("folder", "gpkg_layer")}
+
+    def owned(self) -> Dict[str, tuple]:
+        """{folder: names of its set} for the CLI layout, else nothing."""
+        return {} if self.folder is None else {os.path.abspath(self.folder): tuple(self.LAYOUT.values())}
+
+    def check(self) -> None:
+        """Refuse unusable destinations before any work is done (names too long, folders...)."""
+        for path in self.as_dict().values():
+            check_output_path(path)
 
 
 def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputOptions(), progress=None,
@@ -49,26 +69,46 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
     """
     monitor = Monitor(progress, is_canceled)
     wanted = {k: os.path.abspath(v) for k, v in paths.as_dict().items()}
+    paths.check()
     for folder in {os.path.dirname(p) for p in wanted.values()}:
         check_writable_folder(folder)
-    with OutputSet() as out:
+    run_id = uuid.uuid4().hex
+    result = dataclasses.replace(result, run_id=run_id)
+    with OutputSet(run_id, paths.owned()) as out, write_errors_named():
         if "geotiff" in wanted:
             write_geotiff(out.temp_for(wanted["geotiff"]), result, output.resampling, output.grid, output.resolution,
-                          monitor.span(0.0, 0.9))
+                          monitor.span(0.0, 0.9), scratch=out.scratch(wanted["geotiff"]))
         if "vrt" in wanted:
-            write_vrt(out.temp_for(wanted["vrt"]), result)
+            write_vrt(out.temp_for(wanted["vrt"]), result, scratch=out.scratch(wanted["vrt"]))
         if "points" in wanted:
             write_points(out.temp_for(wanted["points"]), result)
         if "gpkg" in wanted:
-            write_gcp_layer(out.temp_for(wanted["gpkg"]), result)
-        monitor.check()
+            existing = wanted["gpkg"] if is_geopackage(wanted["gpkg"]) and paths.folder is None else None
+            write_gcp_layer(out.temp_for(wanted["gpkg"]), result, paths.gpkg_layer, base=existing)
         if "report" in wanted:
             report = result.to_report()
-            report["outputs"] = wanted
-            report["output_options"] = dataclasses.asdict(output)
+            report.update(run_id=run_id, outputs=wanted, output_options=dataclasses.asdict(output))
             write_report(out.temp_for(wanted["report"]), report)
+        monitor.check()  # the last moment a cancel stops the run: publishing is not interrupted
     monitor.report(1.0, "done")
     return wanted
+
+
+@contextlib.contextmanager
+def write_errors_named():
+    """Writers' OS, GDAL and SQLite errors (disk full, permissions...) as :class:`OutputError`."""
+    import sqlite3
+
+    from rasterio.errors import RasterioError
+
+    try:
+        yield
+    except OutputError:
+        raise
+    except (OSError, RasterioError, sqlite3.Error) as exc:
+        reason = "the disk is full" if getattr(exc, "errno", None) == errno.ENOSPC or "No space" in str(exc) \
+            else (getattr(exc, "strerror", None) or str(exc))
+        raise OutputError(f"Could not write the outputs: {reason}. Nothing was written.") from None
 
 
 __all__ = ["OutputPaths", "write_outputs"]

@@ -1,11 +1,31 @@
-"""Write several output files so that they appear whole or not at all."""
+"""Publishing a run's outputs as one set: whole or not at all, never mixed with another run's.
+
+Every file of a run is written into a staging folder beside its destination (same file system,
+so moves are atomic). Publishing then takes the destination folder's lock (``.hamta.lock``,
+``fcntl.flock``: concurrent runs into one folder publish one after the other), moves any file it
+replaces into the staging folder, moves the new files into place, removes files of the folder's
+own set that this run does not write (a rerun without ``--vrt`` drops the old ``gcps.vrt``), and
+writes the folder's manifest (``.hamta-manifest.json``: the run's id and files) last. If a move
+fails, what was moved is put back. Staging folders carry their process id: the next run removes
+those of processes that no longer exist (a killed run's leftovers).
+"""
 from __future__ import annotations
 
+import contextlib
+import errno
+import json
 import os
+import shutil
+import time
 import uuid
-from typing import Dict
+from typing import Dict, Iterable, Optional
 
 from ..errors import OutputError
+
+STAGING_PREFIX = ".hamta-staging-"
+MANIFEST = ".hamta-manifest.json"
+LOCK = ".hamta.lock"
+SQLITE_PATH_MAX = 512
 
 
 def check_writable_folder(folder: str) -> None:
@@ -14,6 +34,8 @@ def check_writable_folder(folder: str) -> None:
         os.makedirs(folder, exist_ok=True)
     except OSError as exc:
         raise OutputError(f"Cannot create the output folder '{folder}': {exc.strerror or exc}.") from None
+    if not os.path.isdir(folder):
+        raise OutputError(f"The output folder '{folder}' is not a folder.")
     probe = os.path.join(folder, f".hamta-write-test-{uuid.uuid4().hex}")
     try:
         with open(probe, "wb"):
@@ -23,46 +45,169 @@ def check_writable_folder(folder: str) -> None:
         raise OutputError(f"The output folder '{folder}' is not writable: {exc.strerror or exc}.") from None
 
 
+def check_creatable_folder(folder: str) -> None:
+    """Prove ``folder`` exists and is writable, or can be created, without creating anything."""
+    folder = os.path.abspath(folder)
+    probe = folder
+    while not os.path.exists(probe):
+        probe = os.path.dirname(probe)
+    if not os.path.isdir(probe):
+        raise OutputError(f"Cannot create the output folder '{folder}': '{probe}' is a file.")
+    if not os.access(probe, os.W_OK | os.X_OK):
+        raise OutputError(f"The output folder '{folder}' cannot be written: '{probe}' is not writable.")
+
+
+def check_output_path(path: str) -> None:
+    """Refuse a destination whose name or path the file system cannot hold (before any work is done)."""
+    folder, name = os.path.split(os.path.abspath(path))
+    if not name:
+        raise OutputError(f"The output path '{path}' names a folder, not a file.")
+    if os.path.isdir(path):
+        raise OutputError(f"The output path '{path}' is an existing folder.")
+    try:
+        name_max = os.pathconf(folder if os.path.isdir(folder) else "/", "PC_NAME_MAX")
+        path_max = os.pathconf(folder if os.path.isdir(folder) else "/", "PC_PATH_MAX")
+    except (OSError, ValueError):
+        name_max, path_max = 255, 4096
+    staged = len(os.path.join(folder, STAGING_PREFIX + "0" * 48, name).encode())  # the staged copy is longer
+    limit = min(path_max, SQLITE_PATH_MAX)
+    if len(name.encode()) > name_max or staged >= limit:
+        raise OutputError(f"The output path '{path}' is too long ({len(path)} characters): names may have at most "
+                          f"{name_max} and whole paths about {limit - 60} (SQLite, which writes the GeoPackage, "
+                          "takes at most 512).")
+
+
 class OutputSet:
-    """Hands out temporary paths beside the final ones; renames all on success, removes all on error.
+    """Hands out staging paths for final paths; publishes them all together on success, discards
+    them on error (see the module docstring).
 
     Use as a context manager::
 
-        with OutputSet() as out:
-            write_x(out.temp_for("/data/a.tif"))
-            write_y(out.temp_for("/data/b.json"))
-        # both renamed here, or neither exists if the block raised
+        with OutputSet(run_id, owned={"/out": ("registered.tif", "gcps.vrt")}) as out:
+            write_x(out.temp_for("/out/registered.tif"))
+        # published here, or nothing changed if the block raised
+
+    ``owned`` maps a folder to the names that form its set: those this run does not write are
+    removed when it publishes there. ``scratch`` gives a staging subfolder for intermediate files.
     """
 
-    def __init__(self):
-        self._temps: Dict[str, str] = {}
+    def __init__(self, run_id: Optional[str] = None, owned: Optional[Dict[str, Iterable[str]]] = None):
+        self.run_id = run_id or uuid.uuid4().hex
+        self.owned = {os.path.abspath(k): tuple(v) for k, v in (owned or {}).items()}
+        self._staging: Dict[str, str] = {}
+        self._finals: Dict[str, str] = {}
+
+    def _stage(self, folder: str) -> str:
+        if folder not in self._staging:
+            check_writable_folder(folder)
+            remove_leftovers(folder)
+            path = os.path.join(folder, f"{STAGING_PREFIX}{os.getpid()}-{uuid.uuid4().hex[:12]}")
+            try:
+                os.mkdir(path)
+            except OSError as exc:
+                raise OutputError(f"Cannot write in the output folder '{folder}': {exc.strerror or exc}.") from None
+            self._staging[folder] = path
+        return self._staging[folder]
 
     def temp_for(self, final_path: str) -> str:
         final_path = os.path.abspath(final_path)
         folder, name = os.path.split(final_path)
-        check_writable_folder(folder)
-        stem, ext = os.path.splitext(name)
-        temp = os.path.join(folder, f".{stem}.hamta-{uuid.uuid4().hex[:8]}{ext}")
-        self._temps[final_path] = temp
+        temp = os.path.join(self._stage(folder), name)
+        self._finals[final_path] = temp
         return temp
+
+    def scratch(self, final_path: str) -> str:
+        """A private folder for intermediate files, removed with the staging folder."""
+        folder = os.path.dirname(os.path.abspath(final_path))
+        path = os.path.join(self._stage(folder), f"scratch-{uuid.uuid4().hex[:8]}")
+        os.mkdir(path)
+        return path
 
     def __enter__(self) -> "OutputSet":
         return self
 
     def __exit__(self, exc_type, exc, tb):
-        if exc_type is not None:
-            self._discard()
-            return False
         try:
-            for final, temp in self._temps.items():
-                os.replace(temp, final)
-        except OSError as err:
-            self._discard()
-            raise OutputError(f"Could not move the output into place at '{final}': {err.strerror or err}.") from None
+            if exc_type is None:
+                for folder in sorted(self._staging):
+                    self._publish(folder)
+        finally:
+            for path in self._staging.values():
+                shutil.rmtree(path, ignore_errors=True)
         return False
 
-    def _discard(self) -> None:
-        for temp in self._temps.values():
-            for path in (temp, temp + ".aux.xml", temp + ".ovr"):
-                if os.path.exists(path):
-                    os.remove(path)
+    def _publish(self, folder: str) -> None:
+        staging = self._staging[folder]
+        mine = {f: t for f, t in self._finals.items() if os.path.dirname(f) == folder}
+        stale = [os.path.join(folder, n) for n in self.owned.get(folder, ())
+                 if os.path.join(folder, n) not in mine]
+        backup = os.path.join(staging, "replaced")
+        os.mkdir(backup)
+        moved = []  # (final, backup or None)
+        with folder_lock(folder):
+            try:
+                for final in list(mine) + stale:
+                    if os.path.lexists(final):
+                        kept = os.path.join(backup, f"{len(moved)}-{os.path.basename(final)}")
+                        os.replace(final, kept)
+                        moved.append((final, kept))
+                    elif final in mine:
+                        moved.append((final, None))
+                for final, temp in mine.items():
+                    os.replace(temp, final)
+                names = sorted(os.path.basename(f) for f in mine)
+                manifest = os.path.join(staging, MANIFEST)
+                with open(manifest, "w", encoding="utf-8") as f:
+                    json.dump({"run_id": self.run_id, "published": time.strftime("%Y-%m-%dT%H:%M:%S"),
+                               "files": {n: os.path.getsize(os.path.join(folder, n)) for n in names}}, f, indent=1)
+                os.replace(manifest, os.path.join(folder, MANIFEST))
+            except OSError as err:
+                for final, kept in reversed(moved):
+                    with contextlib.suppress(OSError):
+                        if final in mine and os.path.lexists(final) and not os.path.lexists(mine[final]):
+                            os.remove(final)
+                        if kept is not None:
+                            os.replace(kept, final)
+                raise OutputError(f"Could not publish the outputs in '{folder}' ({err.strerror or err}); the "
+                                  "folder was left as it was.") from None
+
+
+@contextlib.contextmanager
+def folder_lock(folder: str):
+    """An exclusive lock on ``folder``'s outputs (blocking); a no-op where ``fcntl`` is missing."""
+    try:
+        import fcntl
+    except ImportError:  # Windows: publication is still staged and rolled back, only not serialised
+        yield
+        return
+    fd = os.open(os.path.join(folder, LOCK), os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        fcntl.flock(fd, fcntl.LOCK_UN)
+        os.close(fd)
+
+
+def remove_leftovers(folder: str) -> None:
+    """Remove staging folders of processes that no longer run (killed runs)."""
+    try:
+        names = os.listdir(folder)
+    except OSError:
+        return
+    for name in names:
+        if not name.startswith(STAGING_PREFIX):
+            continue
+        pid = name[len(STAGING_PREFIX):].split("-", 1)[0]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(os.path.join(folder, name), ignore_errors=True)
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except OSError as exc:
+        return exc.errno == errno.EPERM
+    return True

@@ -11,6 +11,7 @@ reported, cancellation is honoured and memory stays bounded for large scenes.
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import tempfile
@@ -80,7 +81,7 @@ def _crs_wkt(result) -> Optional[str]:
 
 
 def write_vrt(path: str, result, gcp_rows: Optional[np.ndarray] = None, geotransform: Optional[Affine] = None,
-              crs_wkt: Optional[str] = None) -> None:
+              crs_wkt: Optional[str] = None, scratch: Optional[str] = None) -> None:
     """A VRT over the target (absolute path, pixels untouched) carrying GCPs or a geotransform.
 
     By default it carries the enabled GCPs of ``result`` in the reference CRS.
@@ -89,13 +90,17 @@ def write_vrt(path: str, result, gcp_rows: Optional[np.ndarray] = None, geotrans
         gcp_rows = np.array([list(g.target_px) + list(g.map_xy) for g in result.enabled_gcps()], float)
         crs_wkt = _crs_wkt(result)
     source = os.path.abspath(result.target.path)
-    with tempfile.TemporaryDirectory() as tmp:
-        plain = os.path.join(tmp, "plain.vrt")
+    with _scratch_dir(scratch) as tmp:
+        plain = os.path.join(tmp, f"plain-{os.getpid()}.vrt")
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NotGeoreferencedWarning)
             rasterio.shutil.copy(source, plain, driver="VRT")
         tree = ET.parse(plain)
-    root = tree.getroot()
+        root = tree.getroot()
+        for el in root.iter("SourceFilename"):  # a mosaic or a stack keeps each of its own sources
+            if el.get("relativeToVRT") == "1":
+                el.text = os.path.abspath(os.path.join(tmp, el.text))
+                el.set("relativeToVRT", "0")
     for tag in ("SRS", "GeoTransform", "GCPList"):
         for el in root.findall(tag):
             root.remove(el)
@@ -106,9 +111,6 @@ def write_vrt(path: str, result, gcp_rows: Optional[np.ndarray] = None, geotrans
             root.insert(0, metadata)
         for key, value in verdict_tags(result).items():
             ET.SubElement(metadata, "MDI", key=key).text = value
-    for el in root.iter("SourceFilename"):
-        el.text = source
-        el.set("relativeToVRT", "0")
     if geotransform is not None:
         if crs_wkt:
             srs = ET.Element("SRS")
@@ -126,12 +128,23 @@ def write_vrt(path: str, result, gcp_rows: Optional[np.ndarray] = None, geotrans
     tree.write(path, encoding="UTF-8")
 
 
-def write_model_vrt(path: str, result, fallback_crs_wkt: Optional[str] = None) -> dict:
+def write_model_vrt(path: str, result, fallback_crs_wkt: Optional[str] = None, scratch: Optional[str] = None) -> dict:
     """Write the VRT GDAL warps from (the target carrying the model); return the transformer options
     GDAL needs with it. ``fallback_crs_wkt`` labels map coordinates that have no CRS (pixel mode)."""
     geotransform, rows, crs_wkt, options = model_georeferencing(result)
-    write_vrt(path, result, gcp_rows=rows, geotransform=geotransform, crs_wkt=crs_wkt or fallback_crs_wkt)
+    write_vrt(path, result, gcp_rows=rows, geotransform=geotransform, crs_wkt=crs_wkt or fallback_crs_wkt,
+              scratch=scratch)
     return options
+
+
+@contextlib.contextmanager
+def _scratch_dir(scratch: Optional[str]):
+    """``scratch`` (a run's staging folder, removed with it) or a temporary folder of our own."""
+    if scratch is not None:
+        yield scratch
+        return
+    with tempfile.TemporaryDirectory(prefix="hamta-") as tmp:
+        yield tmp
 
 
 def output_grid(result, grid: str = "auto", resolution: Optional[float] = None):
@@ -173,15 +186,16 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None):
 
 
 def write_geotiff(path: str, result, resampling: str = "bilinear", grid: str = "auto",
-                  resolution: Optional[float] = None, monitor: Optional[Monitor] = None) -> None:
+                  resolution: Optional[float] = None, monitor: Optional[Monitor] = None,
+                  scratch: Optional[str] = None) -> None:
     """Warp every band of the target onto the output grid and write a tiled, compressed GeoTIFF."""
     RESAMPLING.check(resampling)
     monitor = monitor or Monitor()
     transform, width, height, crs = output_grid(result, grid, resolution)
     warp_crs = crs or _PLACEHOLDER_CRS
-    with tempfile.TemporaryDirectory() as tmp:
-        vrt = os.path.join(tmp, "model.vrt")
-        options = write_model_vrt(vrt, result, warp_crs.to_wkt())
+    with _scratch_dir(scratch) as tmp:
+        vrt = os.path.join(tmp, f"model-{os.getpid()}.vrt")
+        options = write_model_vrt(vrt, result, warp_crs.to_wkt(), scratch=tmp)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NotGeoreferencedWarning)
             with rasterio.open(vrt) as src:

@@ -6,8 +6,10 @@ the three metadata tables and standard GeoPackage geometry blobs (header + littl
 """
 from __future__ import annotations
 
+import shutil
 import sqlite3
 import struct
+from typing import Optional
 
 import numpy as np
 
@@ -42,22 +44,26 @@ def _point_blob(x: float, y: float, srs_id: int) -> bytes:
     return header + struct.pack("<BIdd", 1, 1, x, y)
 
 
-def write_gcp_layer(path: str, result) -> None:
-    """Write the GCPs of ``result`` as layer ``gcps`` (geometry: destination map coordinates;
-    pixel mode uses (column, -row) of the reference like the ``.points`` file)."""
+def write_gcp_layer(path: str, result, layer: str = TABLE, base: Optional[str] = None) -> None:
+    """Write the GCPs of ``result`` as ``layer`` (geometry: destination map coordinates; pixel mode
+    uses (column, -row) of the reference like the ``.points`` file). With ``base``, an existing
+    GeoPackage, its other layers are kept: it is copied to ``path`` first and only ``layer`` is replaced."""
     gcps = result.gcps
     ref = np.array([g.reference_px for g in gcps], float).reshape(-1, 2)
     mp = np.array([g.map_xy for g in gcps], float).reshape(-1, 2)
     dst = destination_coordinates(result, ref, mp)
     srs_id, name, org, code, definition = _srs(result)
+    if base is not None:
+        shutil.copyfile(base, path)
     con = sqlite3.connect(path)
     try:
         _create_metadata(con)
+        _drop_layer(con, layer)
         if srs_id not in (-1, 0, 4326):
-            con.execute("INSERT INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)",
+            con.execute("INSERT OR IGNORE INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)",
                         (name, srs_id, org, code, definition, ""))
         cols = ", ".join(f'"{n}" {t}' for n, t in _FIELDS)
-        con.execute(f'CREATE TABLE "{TABLE}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom POINT, {cols})')
+        con.execute(f'CREATE TABLE "{layer}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom POINT, {cols})')
         rows = []
         for i, g in enumerate(gcps):
             rows.append((_point_blob(dst[i, 0], dst[i, 1], srs_id), i + 1, int(g.enabled), g.target_px[0],
@@ -65,21 +71,44 @@ def write_gcp_layer(path: str, result) -> None:
                          g.residual_px, g.residual_xy[0], g.residual_xy[1], g.score))
         marks = ",".join("?" * (len(_FIELDS) + 1))
         names = ",".join(["geom"] + [f'"{n}"' for n, _ in _FIELDS])
-        con.executemany(f'INSERT INTO "{TABLE}" ({names}) VALUES ({marks})', rows)
+        con.executemany(f'INSERT INTO "{layer}" ({names}) VALUES ({marks})', rows)
         bounds = (dst.min(axis=0).tolist() + dst.max(axis=0).tolist()) if len(dst) else [None] * 4
+        description = f"Hamta ground control points (run {result.run_id}); {verdict_text(result)}"
         con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, "
                     "max_x, max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)",
-                    (TABLE, "features", TABLE, "Hamta ground control points; " + verdict_text(result), bounds[0],
-                     bounds[1], bounds[2], bounds[3], srs_id))
-        con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (TABLE, "geom", "POINT", srs_id, 0, 0))
+                    (layer, "features", layer, description, bounds[0], bounds[1], bounds[2], bounds[3], srs_id))
+        con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (layer, "geom", "POINT", srs_id, 0, 0))
         con.commit()
     finally:
         con.close()
 
 
+def is_geopackage(path: str) -> bool:
+    """True for an existing SQLite file that declares itself a GeoPackage."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(72)
+    except OSError:
+        return False
+    return head[:16] == b"SQLite format 3\x00" and head[68:72] == struct.pack(">I", _APPLICATION_ID)
+
+
+def _drop_layer(con, layer: str) -> None:
+    """Remove ``layer`` and what refers to it (spatial index, registrations), if present."""
+    names = {r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type='table'")}
+    for table in [n for n in names if n.startswith(f"rtree_{layer}_")] + [layer]:
+        if table in names:
+            con.execute(f'DROP TABLE "{table}"')
+    for registry in ("gpkg_contents", "gpkg_geometry_columns", "gpkg_extensions", "gpkg_ogr_contents"):
+        if registry in names:
+            con.execute(f'DELETE FROM "{registry}" WHERE lower(table_name) = lower(?)', (layer,))
+
+
 def _create_metadata(con) -> None:
     con.execute(f"PRAGMA application_id = {_APPLICATION_ID}")
     con.execute(f"PRAGMA user_version = {_USER_VERSION}")
+    if con.execute("SELECT 1 FROM sqlite_master WHERE name='gpkg_spatial_ref_sys'").fetchone():
+        return  # an existing GeoPackage keeps its metadata tables
     con.execute("CREATE TABLE gpkg_spatial_ref_sys (srs_name TEXT NOT NULL, srs_id INTEGER NOT NULL PRIMARY KEY, "
                 "organization TEXT NOT NULL, organization_coordsys_id INTEGER NOT NULL, definition TEXT NOT NULL, "
                 "description TEXT)")

@@ -7,6 +7,8 @@ def verdict_tags(result) -> dict:
     v = result.verification
     tags = {"HAMTA_METHOD": result.method, "HAMTA_MODEL": result.model.kind,
             "HAMTA_VERDICT": "unchecked" if v is None else v.verdict}
+    if result.run_id:
+        tags["HAMTA_RUN_ID"] = result.run_id
     if v is not None:
         if v.error_bound_px is not None:
             tags["HAMTA_ERROR_BOUND_PX"] = f"{v.error_bound_px:.3f}"

@@ -87,7 +87,7 @@ def test_an_unverified_result_exits_3_and_writes_only_its_report(tmp_path, demo_
                "--tolerance", "0.01", "--out", str(out), "--quiet"])
     captured = capsys.readouterr()
     assert rc == 3 and "NOT VERIFIED" in captured.out and "No georeferenced output" in captured.err
-    assert sorted(p.name for p in out.iterdir()) == ["report.json"]
+    assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["report.json"]
     report = json.loads((out / "report.json").read_text())
     assert report["quality"]["verdict"] != "verified" and report["quality"]["reasons"]
 

@@ -154,15 +154,15 @@ def test_report_schema(tmp_path, results):
 def test_outputs_appear_whole_or_not_at_all(tmp_path, results, monkeypatch):
     import hamta.core.outputs as outputs
 
-    def broken(path, result):
+    def broken(path, result, *args, **kwargs):
         with open(path, "w") as f:
             f.write("partial")
-        raise RuntimeError("disk full")
+        raise RuntimeError("a writer failed")
 
     monkeypatch.setattr(outputs, "write_gcp_layer", broken)
     with pytest.raises(RuntimeError):
         write_outputs(results["affine"], OutputPaths.in_folder(str(tmp_path / "out")))
-    assert list((tmp_path / "out").iterdir()) == []
+    assert list((tmp_path / "out").iterdir()) == []  # no output, no staging folder, no manifest
 
 
 def test_unwritable_output_folder_is_a_clear_error(tmp_path, results):

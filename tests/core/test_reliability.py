@@ -1,0 +1,329 @@
+"""The bad-input matrix: every case through the CLI, with its exit code, its message, no partial or
+mixed output set and byte-identical inputs. One table row per case; README lists the exit codes."""
+import errno
+import hashlib
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import warnings
+
+import numpy as np
+import pytest
+import rasterio
+
+from hamta.cli.main import main
+
+OUT_SET = {"registered.tif", "gcps.points", "gcps.gpkg", "report.json"}
+
+
+def _hashes(*paths):
+    return {p: hashlib.sha256(open(p, "rb").read()).hexdigest() for p in paths if os.path.isfile(p)}
+
+
+def _write(path, data, **profile):
+    data = np.asarray(data)
+    data = data[None] if data.ndim == 2 else data
+    prof = dict(driver="GTiff", width=data.shape[2], height=data.shape[1], count=data.shape[0], dtype=data.dtype.name)
+    prof.update(profile)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with rasterio.open(path, "w", **prof) as dst:
+            dst.write(data)
+    return str(path)
+
+
+@pytest.fixture(scope="module")
+def pair(tmp_path_factory, demo_pair):
+    """A private copy of the demo pair (inputs hashed before and after every case)."""
+    folder = tmp_path_factory.mktemp("inputs")
+    return {k: shutil.copy(demo_pair[k], folder / os.path.basename(demo_pair[k])) for k in ("target", "reference")}
+
+
+def _register(pair, out, *extra, target=None, reference=None):
+    return ["register", "--reference", str(reference or pair["reference"]), "--target", str(target or pair["target"]),
+            "--out", str(out), "--quiet", *extra]
+
+
+def _bad_target(kind, folder, pair):
+    """A broken target of ``kind``: returns its path."""
+    path = folder / f"{kind}.tif"
+    if kind == "missing":
+        return folder / "nope.tif"
+    if kind == "folder":
+        path.mkdir()
+    elif kind == "empty-file":
+        path.write_bytes(b"")
+    elif kind == "text-file":
+        path.write_text("not a raster\n")
+    elif kind == "truncated":
+        data = open(pair["target"], "rb").read()
+        path.write_bytes(data[: len(data) * 6 // 10])
+    elif kind == "self-vrt":
+        path = folder / "self.vrt"
+        path.write_text(f'<VRTDataset rasterXSize="64" rasterYSize="64"><VRTRasterBand dataType="Byte" band="1">'
+                        f'<SimpleSource><SourceFilename relativeToVRT="0">{path}</SourceFilename>'
+                        '<SourceBand>1</SourceBand></SimpleSource></VRTRasterBand></VRTDataset>')
+    elif kind == "constant":
+        _write(path, np.full((200, 200), 9, np.uint8))
+    elif kind == "all-nodata":
+        _write(path, np.zeros((200, 200), np.uint8), nodata=0)
+    elif kind == "too-small":
+        _write(path, np.random.default_rng(0).integers(1, 255, (12, 600), dtype=np.uint8))
+    return path
+
+
+# case -> (exit code, message pattern)
+INPUT_CASES = {
+    "missing": (1, "does not exist"),
+    "folder": (1, "is a folder"),
+    "empty-file": (1, "not a raster GDAL can read"),
+    "text-file": (1, "not a raster GDAL can read"),
+    "truncated": (1, "truncated or corrupt"),
+    "self-vrt": (1, "not a raster GDAL can read|could not be read"),
+    "constant": (1, "is constant"),
+    "all-nodata": (1, "no valid pixels"),
+    "too-small": (1, "too small to register"),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(INPUT_CASES))
+def test_bad_inputs_exit_with_a_message_and_leave_nothing(kind, tmp_path, pair, capsys):
+    before = _hashes(*pair.values())
+    target = _bad_target(kind, tmp_path, pair)
+    out = tmp_path / "out"
+    code, pattern = INPUT_CASES[kind]
+    rc = main(_register(pair, out, target=target))
+    err = capsys.readouterr().err
+    assert rc == code, err
+    assert "Traceback" not in err and str(target) in err and __import__("re").search(pattern, err), err
+    assert not out.exists()  # checked before any output folder is made
+    assert _hashes(*pair.values()) == before
+
+
+# CLI arguments -> (exit code, message pattern); usage errors are 2.
+PARAMETER_CASES = {
+    "nan-rotation": (["--method", "cfog", "--param", "max_rotation_deg=nan"], 2, "max_rotation_deg must be a finite"),
+    "nan-ratio": (["--method", "sift", "--param", "ratio=nan"], 2, "ratio must be a finite"),
+    "text-number": (["--method", "sift", "--param", "n_features=many"], 2, "parameter n_features expects a number"),
+    "fraction-for-whole": (["--method", "sift", "--param", "n_features=12.5"], 2, "n_features expects a whole"),
+    "unknown-param": (["--method", "sift", "--param", "colour=red"], 2, "has no parameter"),
+    "auto-with-param": (["--param", "ratio=0.7"], 2, "takes no method parameters"),
+    "nan-threshold": (["--ransac-threshold", "nan"], 2, "ransac_threshold_px must be a finite"),
+    "inf-threshold": (["--ransac-threshold", "inf"], 2, "ransac_threshold_px must be a finite"),
+    "negative-seed": (["--seed", "-1"], 2, "seed must be a whole number of at least 0"),
+    "zero-gcps": (["--max-gcps", "0"], 2, "max_gcps must be a whole number of at least 3"),
+    "nan-tolerance": (["--tolerance", "nan"], 2, "tolerance_px must be a finite"),
+    "unknown-method": (["--method", "magic"], 2, "unknown method 'magic'"),
+    "unknown-model": (["--model", "wobbly"], 2, "unknown model 'wobbly'"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(PARAMETER_CASES))
+def test_bad_parameters_are_usage_errors_named_before_any_work(case, tmp_path, pair, capsys):
+    extra, code, pattern = PARAMETER_CASES[case]
+    t0 = time.perf_counter()
+    rc = main(_register(pair, tmp_path / "out", *extra))
+    err = capsys.readouterr().err
+    assert rc == code and pattern in err and "Traceback" not in err, err
+    assert not (tmp_path / "out").exists() and time.perf_counter() - t0 < 30
+
+
+def test_a_whole_number_written_as_a_float_is_accepted(tmp_path, pair):
+    assert main(_register(pair, tmp_path / "o", "--method", "sift", "--param", "n_features=4e3")) == 0
+
+
+@pytest.mark.parametrize("where", ["registered.tif", "gcps.vrt"])
+def test_an_output_that_is_an_input_is_refused_and_the_input_kept(where, tmp_path, pair, capsys):
+    out = tmp_path / "out"
+    out.mkdir()
+    copy = shutil.copy if where.endswith(".tif") else _vrt_over
+    target = copy(pair["target"], out / where)
+    before = _hashes(target, pair["target"])
+    rc = main(_register(pair, out, "--vrt", target=target))
+    err = capsys.readouterr().err
+    assert rc == 1 and "is one of the input files" in err, err
+    assert _hashes(target, pair["target"]) == before and sorted(os.listdir(out)) == [where]
+
+
+def _vrt_over(source, path):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        rasterio.shutil.copy(source, path, driver="VRT")
+    return str(path)
+
+
+def test_a_rerun_replaces_the_set_whole(tmp_path, pair):
+    out = tmp_path / "out"
+    assert main(_register(pair, out, "--vrt")) == 0
+    assert set(os.listdir(out)) >= OUT_SET | {"gcps.vrt"}
+    assert main(_register(pair, out)) == 0  # without --vrt: the old gcps.vrt is not left behind
+    files = {f for f in os.listdir(out) if not f.startswith(".")}
+    assert files == OUT_SET
+    _assert_one_set(out)
+
+
+def _assert_one_set(out):
+    """Every published file belongs to the run the manifest names."""
+    manifest = json.loads((out / ".hamta-manifest.json").read_text())
+    run = manifest["run_id"]
+    assert json.loads((out / "report.json").read_text())["run_id"] == run
+    with rasterio.open(out / "registered.tif") as ds:
+        assert ds.tags()["HAMTA_RUN_ID"] == run
+    assert run.encode() in (out / "gcps.gpkg").read_bytes()
+    for name, size in manifest["files"].items():
+        assert os.path.getsize(out / name) == size
+    assert not [f for f in os.listdir(out) if f.startswith(".hamta-staging-")]
+
+
+def test_a_path_too_long_fails_before_the_work(tmp_path, pair, capsys):
+    out = tmp_path / ("x" * 250) / ("y" * 250)
+    t0 = time.perf_counter()
+    rc = main(_register(pair, out))
+    assert rc == 1 and "too long" in capsys.readouterr().err
+    assert time.perf_counter() - t0 < 10
+
+
+def test_an_unwritable_folder_fails_clearly(tmp_path, pair, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    rc = main(_register(pair, blocker / "out"))
+    assert rc == 1 and "Cannot create the output folder" in capsys.readouterr().err
+
+
+def test_a_full_disk_publishes_nothing(tmp_path, pair, capsys, monkeypatch):
+    import hamta.core.outputs as outputs
+
+    def full(path, result):
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    out = tmp_path / "out"
+    assert main(_register(pair, out)) == 0
+    before = _hashes(*(out / f for f in OUT_SET))
+    monkeypatch.setattr(outputs, "write_points", full)
+    rc = main(_register(pair, out))
+    assert rc == 1 and "the disk is full" in capsys.readouterr().err
+    assert _hashes(*(out / f for f in OUT_SET)) == before  # the previous set is untouched
+    _assert_one_set(out)
+
+
+def test_a_vrt_mosaic_target_is_warped_from_all_its_tiles(tmp_path, pair):
+    """The VRT carrying the model keeps each source of the target: two tiles, each its own half."""
+    with rasterio.open(pair["target"]) as ds:
+        data = ds.read()
+    h, w = data.shape[1:]
+    left = _write(tmp_path / "left.tif", data[:, :, : w // 2])
+    right = _write(tmp_path / "right.tif", data[:, :, w // 2:])
+    stack = tmp_path / "stack.vrt"
+    bands = "".join(
+        f'<VRTRasterBand dataType="Byte" band="{b}">' + "".join(
+            f'<SimpleSource><SourceFilename relativeToVRT="1">{os.path.basename(f)}</SourceFilename>'
+            f'<SourceBand>{b}</SourceBand><SrcRect xOff="0" yOff="0" xSize="{cw}" ySize="{h}"/>'
+            f'<DstRect xOff="{x0}" yOff="0" xSize="{cw}" ySize="{h}"/></SimpleSource>'
+            for f, x0, cw in ((left, 0, w // 2), (right, w // 2, w - w // 2)))
+        + "</VRTRasterBand>" for b in (1, 2, 3))
+    stack.write_text(f'<VRTDataset rasterXSize="{w}" rasterYSize="{h}">{bands}</VRTDataset>')
+    out_vrt, out_tif = tmp_path / "via-vrt", tmp_path / "via-tif"
+    assert main(_register(pair, out_vrt, "--method", "sift", target=stack)) == 0
+    assert main(_register(pair, out_tif, "--method", "sift", target=_write(tmp_path / "whole.tif", data))) == 0
+    with rasterio.open(out_vrt / "registered.tif") as a, rasterio.open(out_tif / "registered.tif") as b:
+        x, y = a.read().astype(float), b.read().astype(float)
+    assert x.shape == y.shape
+    both = (x > 0) & (y > 0)
+    assert both.mean() > 0.3 and np.abs(x - y)[both].mean() < 2.0  # the same picture, both halves
+    assert np.abs(x[0] - x[1])[both[0]].mean() > 1.0  # three distinct bands, not three copies of band 1
+
+
+def test_broken_pipe_exits_quietly():
+    proc = subprocess.Popen([sys.executable, "-m", "hamta.cli.main", "methods"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE)
+    proc.stdout.read(20)
+    proc.stdout.close()
+    assert proc.wait(timeout=120) == 0 and proc.stderr.read() == b""
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_interrupt_exits_130_and_leaves_no_staging(sig, tmp_path, pair):
+    out = tmp_path / "out"
+    proc = subprocess.Popen([sys.executable, "-m", "hamta.cli.main", *_register(pair, out, "--method", "cfog",
+                                                                                 "--param", "max_rotation_deg=180")],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    time.sleep(4)
+    proc.send_signal(sig)
+    assert proc.wait(timeout=120) == 130
+    err = proc.stderr.read().decode()
+    assert "Traceback" not in err and "interrupted" in err
+    assert not out.exists() or not [f for f in os.listdir(out) if not f.startswith(".hamta")]
+
+
+def test_leftovers_of_a_killed_run_are_removed_by_the_next(tmp_path, pair):
+    out = tmp_path / "out"
+    out.mkdir()
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    leftover = out / f".hamta-staging-{dead.pid}-deadbeef"
+    leftover.mkdir()
+    (leftover / "registered.tif").write_bytes(b"half")
+    assert main(_register(pair, out)) == 0
+    assert not leftover.exists()
+    _assert_one_set(out)
+
+
+def test_concurrent_runs_into_one_folder_never_mix(tmp_path, pair):
+    out = tmp_path / "out"
+    procs = [subprocess.Popen([sys.executable, "-m", "hamta.cli.main", *_register(pair, out, "--method", "sift",
+                                                                                  "--seed", str(k))],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE) for k in range(3)]
+    assert [p.wait(timeout=600) for p in procs] == [0, 0, 0]
+    _assert_one_set(out)
+
+
+# map-points: the report and the coordinates
+MAP_CASES = {
+    "missing": (None, 1, "does not exist"),
+    "folder": ("folder", 1, "is a folder"),
+    "not-json": ("not json", 1, "not readable JSON"),
+    "not-object": ([1, 2], 1, "not a Hamta report"),
+    "no-model": ({"reference": {"transform": [0, 1, 0, 0, 0, -1]}}, 1, "not a Hamta report"),
+    "bad-matrix": ({"model": {"type": "affine", "target_px_to_reference_px": [[1, 0, 0], [0, 1, 0]]},
+                    "reference": {"transform": [0, 1, 0, 0, 0, -1]}}, 1, "not a Hamta report|cannot be evaluated"),
+    "zero-matrix": ({"model": {"type": "affine", "target_px_to_reference_px": [[0] * 3] * 3},
+                     "reference": {"transform": [0, 1, 0, 0, 0, -1]}}, 1, "finite coordinates|cannot be evaluated"),
+    "nan-matrix": ({"model": {"type": "affine", "target_px_to_reference_px": [[float("nan")] * 3] * 3},
+                    "reference": {"transform": [0, 1, 0, 0, 0, -1]}}, 1, "finite coordinates|cannot be evaluated"),
+    "bad-crs": ({"model": {"type": "affine", "frame": "target_crs", "frame_crs": "EPSG:nope",
+                           "frame_transform": [0, 1, 0, 0, 0, -1], "target_px_to_frame_px": np.eye(3).tolist()},
+                 "reference": {"transform": [0, 1, 0, 0, 0, -1], "crs": "EPSG:32639"}}, 1, "report"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(MAP_CASES))
+def test_map_points_names_the_report_and_the_problem(case, tmp_path, capsys):
+    content, code, pattern = MAP_CASES[case]
+    path = tmp_path / "report.json"
+    if content == "folder":
+        path.mkdir()
+    elif isinstance(content, str):
+        path.write_text(content)
+    elif content is not None:
+        path.write_text(json.dumps(content))
+    rc = main(["map-points", str(path), "1", "2"])
+    err = capsys.readouterr().err
+    assert rc == code and str(path) in err and __import__("re").search(pattern, err) and "Traceback" not in err, err
+
+
+def test_map_points_with_a_huge_spline_stays_within_memory(monkeypatch):
+    from hamta.core.estimation import models
+
+    n = 200_000
+    rng = np.random.default_rng(0)
+    tps = models.ThinPlateSplineModel(rng.uniform(0, 1e4, (n, 2)), np.zeros(2), 1e4, rng.normal(0, 1e-6, (n, 2)),
+                                      np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]))
+    widest = []
+    real = models._tps_kernel
+    monkeypatch.setattr(models, "_tps_kernel", lambda r2: widest.append(r2.size) or real(r2))
+    out = tps.apply(rng.uniform(0, 1e4, (50, 2)))
+    assert out.shape == (50, 2) and np.isfinite(out).all() and max(widest) <= 4_000_000
