@@ -6,11 +6,11 @@ VENV := .venv
 QVENV := .venv-qgis
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := qgis python3-qgis qgis-providers python3-numpy python3-scipy python3-opencv python3-rasterio \
-	python3-pyproj python3-shapely python3-pytest python3-venv python3-setuptools python3-wheel gdal-bin \
+	python3-pyproj python3-shapely python3-pytest python3-hypothesis python3-venv python3-setuptools python3-wheel gdal-bin \
 	qttools5-dev-tools pyqt5-dev-tools
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: demo test lint test-wheels test-debian sysdeps i18n bench clean
+.PHONY: demo test lint test-wheels test-debian sysdeps i18n bench fuzz package clean
 
 demo: $(VENV)/.ok
 	$(VENV)/bin/hamta demo --out demo-output
@@ -31,6 +31,22 @@ test-debian: $(QVENV)/.ok
 
 bench: $(VENV)/.ok
 	$(VENV)/bin/hamta bench
+
+# The QGIS plugin zip for Plugins > Manage and Install Plugins > Install from ZIP: dist/hamta-<version>.zip
+# (git-tracked plugin files only; see tools/package.py).
+package:
+	$(PYTHON) tools/package.py
+
+# The long fuzzing profile: 2,000 rasters per method family (and 2,000 parameter sets and reports), two
+# families at a time; outcomes are tallied from fuzz-output/*.jsonl at the end (hours on 2 cores).
+FUZZ_FAMILIES := opencv rilbp sibrif sar structural phase auto inputs
+fuzz: $(VENV)/.ok
+	@mkdir -p fuzz-output && rm -f fuzz-output/*.jsonl
+	@printf '%s\n' $(FUZZ_FAMILIES) | xargs -P 2 -I{} sh -c 'HYPOTHESIS_PROFILE=long HAMTA_FUZZ_FAMILY={} \
+		HAMTA_FUZZ_LOG=fuzz-output/{}.jsonl $(VENV)/bin/python -P -m pytest tests/core/test_fuzz.py -q \
+		-k "$$( [ {} = inputs ] && echo "parameter or map_points" || echo any_raster )" > fuzz-output/{}.log 2>&1; \
+		echo "fuzz {}: pytest exit $$? (fuzz-output/{}.log)"'
+	$(VENV)/bin/python tools/fuzz_summary.py fuzz-output/*.jsonl
 
 $(VENV)/.ok: pyproject.toml
 	@$(PYTHON) -m venv --help >/dev/null 2>&1 && $(PYTHON) -c "import ensurepip" 2>/dev/null || \
@@ -58,4 +74,4 @@ i18n: sysdeps $(QVENV)/.ok
 	lrelease -silent i18n/*.ts
 
 clean:
-	rm -rf $(VENV) $(QVENV) demo-output bench-output *.egg-info
+	rm -rf $(VENV) $(QVENV) demo-output bench-output fuzz-output *.egg-info

@@ -39,9 +39,11 @@ def cmd_register(args) -> int:
                               max_gcps=args.max_gcps, target_georef=args.target_georef,
                               target_band=args.target_band, reference_band=args.reference_band,
                               tolerance_px=args.tolerance, auto_budget_s=args.auto_budget)
-    output = OutputOptions(resampling=args.resampling, grid=args.grid)
+    output = OutputOptions(resampling=args.resampling, grid=args.grid, resolution=args.resolution, crs=args.crs,
+                           format=args.format, creation_options=tuple(args.co), fill=args.fill, nodata=args.nodata)
+    paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format)
     try:
-        result, written = run(args.target, args.reference, OutputPaths.in_folder(args.out, vrt=args.vrt),
+        result, written = run(args.target, args.reference, paths,
                               method=args.method, params=_pairs(args.param), options=options, output=output,
                               accept_unverified=args.accept_unverified, progress=ProgressBar(not args.quiet))
     except UnverifiedResult as exc:
@@ -103,8 +105,20 @@ def cmd_methods(args) -> int:
 
     from ..core.methods import all_methods
 
-    for m in all_methods().values():
+    order = {"method": 0, "baseline": 1, "faithful": 2}
+    methods = sorted(all_methods().values(), key=lambda m: (order.get(m.kind, 3), m.name != "sift", m.name))
+    if not args.verbose:
+        rows = [("auto", "default", "any pair: tries methods from fast to robust until one's result verifies")]
+        rows += [(m.name, m.kind, m.advice) for m in methods]
+        width = max(len(r[0]) for r in rows)
+        print(f"{'method':{width}}  {'kind':8}  when to use")
+        for name, kind, advice in rows:
+            print(f"{name:{width}}  {kind:8}  {advice}")
+        print("\n'hamta methods --verbose' shows what each does, its source and its parameters (--param KEY=VALUE).")
+        return 0
+    for m in methods:
         print(f"{m.name}  [{m.kind}]  {m.title}")
+        print(f"    when to use: {m.advice}")
         print(f"    {m.summary}")
         print(f"    source: {m.citation}; default model: {m.default_model}")
         for f in dataclasses.fields(m.params_type):
@@ -176,33 +190,76 @@ def cmd_train_pca_sift(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from ..core.options import GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF, OutputOptions, RegisterOptions
+    from ..core.options import (
+        FILL,
+        FORMAT,
+        GRID,
+        MODEL,
+        REFINE,
+        RESAMPLING,
+        TARGET_GEOREF,
+        OutputOptions,
+        RegisterOptions,
+    )
+    from ..core.version import __version__
 
     d, o = RegisterOptions(), OutputOptions()
-    p = argparse.ArgumentParser(prog="hamta", description="Automatic georeferencing and co-registration of rasters.")
+    p = argparse.ArgumentParser(prog="hamta", description="Automatic georeferencing and co-registration of rasters.",
+                                epilog="Exit codes: 0 success, 1 runtime error, 2 usage error, 3 unverified result, "
+                                       "130 cancelled.")
+    p.add_argument("--version", action="version", version=f"hamta {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
 
-    r = sub.add_parser("register", help="register a target raster onto a reference raster")
+    r = sub.add_parser("register", help="register a target raster onto a reference raster",
+                       description="Register TARGET onto REFERENCE and write the georeferenced outputs into OUT.")
     r.add_argument("--reference", required=True, help="georeferenced reference raster (its CRS is the map)")
     r.add_argument("--target", required=True, help="raster to georeference")
     r.add_argument("--out", required=True, help="output folder (created if missing)")
     r.add_argument("--method", default="auto",
                    help="matching method (see 'hamta methods'); default auto: methods from fast to robust until one's "
                         "result verifies")
-    r.add_argument("--model", default=None, help=f"transform model: {', '.join(MODEL.values)}")
-    r.add_argument("--param", action="append", default=[], metavar="KEY=VALUE", help="method parameter")
-    r.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values)
-    r.add_argument("--grid", default=o.grid, choices=GRID.values, help="output pixel grid")
+    r.add_argument("--model", default=None,
+                   help=f"transform model: {', '.join(MODEL.values)} (default: the method's, affine for most)")
+    r.add_argument("--param", action="append", default=[], metavar="KEY=VALUE",
+                   help="method parameter, repeatable (see 'hamta methods --verbose')")
+    r.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values,
+                   help=f"resampling of the warped output (default {o.resampling})")
+    r.add_argument("--grid", default=o.grid, choices=GRID.values,
+                   help="output pixel grid: the reference's, the target's own resolution, or auto (the reference's "
+                        f"when the resolutions are within 10 %%) (default {o.grid})")
+    r.add_argument("--resolution", type=float, default=None,
+                   help="output pixel size in output CRS units (default: from --grid)")
+    r.add_argument("--crs", default=None,
+                   help="output CRS: EPSG:code, WKT or PROJ string (default: the reference's CRS)")
+    r.add_argument("--format", default=o.format, choices=FORMAT.values,
+                   help="warped raster: gtiff (tiled, DEFLATE), cog (cloud-optimised, with overviews) or vrt (a warped "
+                        "VRT reading the target, written as registered.vrt) (default gtiff)")
+    r.add_argument("--co", action="append", default=[], metavar="KEY=VALUE",
+                   help="GDAL creation option of the warped raster, repeatable (e.g. COMPRESS=ZSTD, PREDICTOR=2)")
+    r.add_argument("--fill", default=o.fill, choices=FILL.values,
+                   help="how pixels outside the target are marked: auto (the target's nodata or collar value, NaN "
+                        "for floats, else an alpha band, so valid zeros stay valid), alpha, or nodata (default auto)")
+    r.add_argument("--nodata", type=float, default=None,
+                   help="nodata value with --fill nodata (default: the target's, else 0)")
     r.add_argument("--vrt", action="store_true", help="also write gcps.vrt (target + GCPs, no resampling)")
-    r.add_argument("--max-working-pixels", type=int, default=d.max_working_pixels)
+    r.add_argument("--max-working-pixels", type=int, default=d.max_working_pixels,
+                   help=f"pixel budget of the images matched (larger rasters are read decimated, then refined at "
+                        f"full resolution) (default {d.max_working_pixels})")
     r.add_argument("--ransac-threshold", type=float, default=None,
-                   help="working pixels (default: the method's, 3 for most)")
-    r.add_argument("--seed", type=int, default=d.seed)
-    r.add_argument("--refine", default=d.refine, choices=REFINE.values)
-    r.add_argument("--max-gcps", type=int, default=d.max_gcps)
-    r.add_argument("--target-georef", default=d.target_georef, choices=TARGET_GEOREF.values)
-    r.add_argument("--target-band", type=int, default=None)
-    r.add_argument("--reference-band", type=int, default=None)
+                   help="outlier threshold, working pixels (default: the method's, 3 for most)")
+    r.add_argument("--seed", type=int, default=d.seed, help=f"random seed of RANSAC and sampling (default {d.seed})")
+    r.add_argument("--refine", default=d.refine, choices=REFINE.values,
+                   help="full-resolution refinement of the matches: auto refines when an image was decimated or the "
+                        f"method asks for it (default {d.refine})")
+    r.add_argument("--max-gcps", type=int, default=d.max_gcps,
+                   help=f"most GCPs kept (well spread) for the fit and the outputs (default {d.max_gcps})")
+    r.add_argument("--target-georef", default=d.target_georef, choices=TARGET_GEOREF.values,
+                   help="use the target's own georeferencing as a starting point (auto: when it overlaps the "
+                        f"reference), or ignore it when it is wrong (default {d.target_georef})")
+    r.add_argument("--target-band", type=int, default=None,
+                   help="band of the target to match (default: luminance of RGB, else band 1)")
+    r.add_argument("--reference-band", type=int, default=None,
+                   help="band of the reference to match (default: luminance of RGB, else band 1)")
     r.add_argument("--tolerance", type=float, default=d.tolerance_px,
                    help=f"accuracy asked for, reference px: a result is verified only when the independent check "
                         f"bounds its error within this (default {d.tolerance_px:g})")
@@ -214,12 +271,15 @@ def build_parser() -> argparse.ArgumentParser:
     r.set_defaults(func=cmd_register)
 
     m = sub.add_parser("map-points", help="map target pixels through the model stored in a report.json")
-    m.add_argument("report")
-    m.add_argument("coords", nargs="+", help="X Y pairs in target pixels (x = column, y = row, corner origin)")
-    m.add_argument("--json", action="store_true")
+    m.add_argument("report", help="a report.json written by 'hamta register'")
+    m.add_argument("coords", nargs="+", help="X Y pairs in target pixels (x = column, y = row, corner origin; put "
+                                             "'--' before negative numbers)")
+    m.add_argument("--json", action="store_true", help="print JSON instead of a table")
     m.set_defaults(func=cmd_map_points)
 
-    sub.add_parser("methods", help="list the matching methods and their parameters").set_defaults(func=cmd_methods)
+    ms = sub.add_parser("methods", help="the matching methods and when to use each")
+    ms.add_argument("--verbose", action="store_true", help="also what each does, its source and its parameters")
+    ms.set_defaults(func=cmd_methods)
 
     b = sub.add_parser("bench", help="measure methods and baselines on synthetic families and real pairs")
     b.add_argument("--quick", action="store_true",
@@ -234,7 +294,7 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--out", default="bench-output", help="folder for bench.json, bench.md and the cases")
     b.add_argument("--data", default=None, help="development data folder (default ../shared/data)")
     b.add_argument("--no-reproductions", action="store_true", help="skip the papers' own evaluations")
-    b.add_argument("--quiet", action="store_true")
+    b.add_argument("--quiet", action="store_true", help="no progress bar")
     b.set_defaults(func=cmd_bench)
 
     t = sub.add_parser("train-pca-sift", help="learn the PCA-SIFT basis from images (maintainers)")
@@ -243,9 +303,9 @@ def build_parser() -> argparse.ArgumentParser:
     t.set_defaults(func=cmd_train_pca_sift)
 
     dm = sub.add_parser("demo", help="register the bundled sample and report the true error")
-    dm.add_argument("--out", default="demo-output")
-    dm.add_argument("--method", default="sift")
-    dm.add_argument("--quiet", action="store_true")
+    dm.add_argument("--out", default="demo-output", help="folder for the sample and the result (default demo-output)")
+    dm.add_argument("--method", default="sift", help="matching method (default sift)")
+    dm.add_argument("--quiet", action="store_true", help="no progress bar")
     dm.set_defaults(func=cmd_demo)
     return p
 
@@ -254,7 +314,10 @@ def main(argv: Optional[List[str]] = None) -> int:
     """Run one ``hamta`` command; returns its exit code (see ``EXIT_*``); never shows a traceback
     unless ``HAMTA_DEBUG`` is set."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or a usage error argparse has already explained
+        return exc.code if isinstance(exc.code, int) else EXIT_USAGE
     previous = _terminate_as_interrupt()
     try:
         code = args.func(args)

@@ -82,6 +82,19 @@ TARGET_GEOREF = Choice("target_georef", {
     "ignore": "Ignore",
 }, "auto")
 
+FORMAT = Choice("format", {
+    "auto": "From the file name (.vrt: VRT, otherwise GeoTIFF)",
+    "gtiff": "GeoTIFF (tiled, compressed)",
+    "cog": "Cloud-optimised GeoTIFF (with overviews)",
+    "vrt": "Warped VRT (no pixels copied)",
+}, "auto", aliases={"geotiff": "gtiff", "tif": "gtiff", "tiff": "gtiff"})
+
+FILL = Choice("fill", {
+    "auto": "Automatic (the target's nodata, NaN for floats, else an alpha band)",
+    "alpha": "Alpha band",
+    "nodata": "Nodata value",
+}, "auto")
+
 ROBUST = Choice("robust", {
     "ransac": "Seeded LO-RANSAC",
     "none": "None: fit every correspondence",
@@ -198,17 +211,49 @@ class OutputOptions:
     resampling : str
         See :data:`RESAMPLING`.
     grid : str
-        Output pixel grid, see :data:`GRID` and :func:`hamta.core.outputs.geotiff.output_grid`.
+        Output pixel grid, see :data:`GRID` and :func:`hamta.core.outputs.warp.output_grid`.
     resolution : float, optional
-        Output pixel size in reference map units (overrides ``grid``'s).
+        Output pixel size in output CRS units (overrides ``grid``'s).
+    crs : str, optional
+        Output CRS (EPSG code, WKT or PROJ string); the reference CRS when None.
+    format : str
+        See :data:`FORMAT`.
+    creation_options : tuple of str
+        GDAL creation options ``KEY=VALUE``, added to (and overriding) Hamta's defaults for the format.
+    fill : str
+        How pixels outside the target are marked, see :data:`FILL`; 'auto' never turns valid pixels
+        (zeros included) into nodata.
+    nodata : float, optional
+        The nodata value with ``fill='nodata'`` (default: the target's, else 0).
     """
 
     resampling: str = RESAMPLING.default
     grid: str = GRID.default
     resolution: Optional[float] = None
+    crs: Optional[str] = None
+    format: str = FORMAT.default
+    creation_options: Tuple[str, ...] = ()
+    fill: str = FILL.default
+    nodata: Optional[float] = None
 
     def __post_init__(self):
         RESAMPLING.check(self.resampling)
         GRID.check(self.grid)
+        object.__setattr__(self, "format", FORMAT.check(self.format))
+        FILL.check(self.fill)
         if self.resolution is not None:
             _number("resolution", self.resolution, positive=True)
+        if self.nodata is not None and (isinstance(self.nodata, bool) or not isinstance(self.nodata, (int, float))):
+            raise ValueError(f"nodata must be a number, got {self.nodata!r}")
+        object.__setattr__(self, "creation_options", tuple(self.creation_options))
+        for item in self.creation_options:
+            if "=" not in item or not item.split("=", 1)[0].strip():
+                raise ValueError(f"creation options are KEY=VALUE, got {item!r}")
+        if self.crs is not None:
+            from rasterio.crs import CRS
+            from rasterio.errors import CRSError
+
+            try:
+                CRS.from_user_input(self.crs)
+            except CRSError as exc:
+                raise ValueError(f"crs: {self.crs!r} is not a coordinate reference system GDAL knows ({exc})") from None

@@ -57,9 +57,9 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     stage = monitor.span(share, 1.0)
     if not result.verified and not accept_unverified:
         written = {}
-        if paths.report:  # the report says why; in a run folder it replaces the previous set whole
-            written = write_outputs(result, OutputPaths(report=paths.report, folder=paths.folder), output=output,
-                                    is_canceled=is_canceled)
+        if paths.report or paths.html:  # the reports say why; in a run folder they replace the previous set whole
+            written = write_outputs(result, OutputPaths(report=paths.report, html=paths.html, folder=paths.folder),
+                                    output=output, is_canceled=is_canceled)
         raise UnverifiedResult(f"The registration of '{result.target.path}' is {verdict_text(result)}. No "
                                "georeferenced output was written; accept unverified results to write it anyway.",
                                result, written)

@@ -1,9 +1,10 @@
-"""The QGIS plugin object: registers the Processing provider and loads translations."""
+"""The QGIS plugin object: registers the Processing provider, loads translations and says once when
+the provider's algorithms cannot run (missing Python packages) and how to fix it."""
 from __future__ import annotations
 
 import os
 
-from qgis.core import QgsApplication, QgsSettings
+from qgis.core import Qgis, QgsApplication, QgsMessageLog, QgsSettings
 from qgis.PyQt.QtCore import QCoreApplication, QTranslator
 
 from ..processing.provider import HamtaProvider
@@ -34,7 +35,18 @@ class HamtaPlugin:
         registry = QgsApplication.processingRegistry()
         if registry.providerById("hamta") is None:
             self.provider = HamtaProvider()
-            registry.addProvider(self.provider)
+            registry.addProvider(self.provider)  # loads the algorithms, or their unavailable stand-ins
+            if self.provider.unavailable:
+                self.report_unavailable(self.provider.unavailable)
+
+    def report_unavailable(self, message):
+        """One warning in the message log and, in the QGIS window, one in its message bar."""
+        QgsMessageLog.logMessage(message, "Hamta", Qgis.Warning)
+        message_bar = getattr(self.iface, "messageBar", None)  # iface is None in qgis_process
+        if callable(message_bar):
+            summary = QCoreApplication.translate("HamtaPlugin", "its algorithms cannot run; press 'More' for why and "
+                                                            "how to fix it.")
+            message_bar().pushMessage("Hamta", summary, message, Qgis.Warning, 0)
 
     def initGui(self):  # noqa: N802
         self.initProcessing()

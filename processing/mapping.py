@@ -9,11 +9,12 @@ import dataclasses
 import re
 from typing import Any, Dict, Mapping, Tuple
 
-from ..core.options import GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF, OutputOptions, RegisterOptions
+from ..core.options import FILL, FORMAT, GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF, OutputOptions, RegisterOptions
 from ..core.outputs import OutputPaths
 
 # Processing parameter name -> the choice its enum shows.
-ENUMS = {"MODEL": MODEL, "RESAMPLING": RESAMPLING, "GRID": GRID, "REFINE": REFINE, "TARGET_GEOREF": TARGET_GEOREF}
+ENUMS = {"MODEL": MODEL, "RESAMPLING": RESAMPLING, "GRID": GRID, "REFINE": REFINE, "TARGET_GEOREF": TARGET_GEOREF,
+         "FORMAT": FORMAT, "FILL": FILL}
 
 
 def method_parameter_name(field_name: str) -> str:
@@ -61,10 +62,22 @@ def register_settings(values: Mapping[str, Any]):
         tolerance_px=float(values.get("TOLERANCE") or d.tolerance_px),
     )
     gpkg, layer = vector_destination(values.get("GCP_LAYER") or "")
-    paths = OutputPaths(geotiff=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,
+    paths = OutputPaths(raster=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,
                         gpkg=gpkg or None, gpkg_layer=layer, vrt=values.get("GCP_VRT") or None,
-                        report=values.get("REPORT") or None)
-    return options, paths, OutputOptions(resampling=_enum(values, "RESAMPLING"), grid=_enum(values, "GRID"))
+                        report=values.get("REPORT") or None, html=values.get("OUTPUT_HTML") or None)
+    output = OutputOptions(resampling=_enum(values, "RESAMPLING"), grid=_enum(values, "GRID"),
+                           resolution=float(values["RESOLUTION"]) if values.get("RESOLUTION") else None,
+                           crs=values.get("OUTPUT_CRS") or None, format=_enum(values, "FORMAT"),
+                           creation_options=creation_options(values.get("CREATION_OPTIONS") or ""),
+                           fill=_enum(values, "FILL"),
+                           nodata=float(values["NODATA"]) if values.get("NODATA") is not None else None)
+    return options, paths, output
+
+
+def creation_options(text: str) -> Tuple[str, ...]:
+    """GDAL creation options from Processing's text field: ``KEY=VALUE`` items separated by spaces, commas,
+    semicolons or '|' (QGIS's own raster-options widget writes ``KEY=VALUE|KEY=VALUE``)."""
+    return tuple(item for item in re.split(r"[\s,;|]+", text.strip()) if item)
 
 
 _OGR_URI = re.compile(r"""^ogr:dbname=(?P<q>['"]?)(?P<path>.+?)(?P=q)(\s+table=(?P<t>['"]?)(?P<table>[^'"]+)(?P=t))?"""

@@ -11,6 +11,7 @@ from qgis.core import (
     QgsProcessingOutputString,
     QgsProcessingParameterBand,
     QgsProcessingParameterBoolean,
+    QgsProcessingParameterCrs,
     QgsProcessingParameterDefinition,
     QgsProcessingParameterEnum,
     QgsProcessingParameterFileDestination,
@@ -52,6 +53,8 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
     REFINE, MAX_GCPS, TARGET_GEOREF = "REFINE", "MAX_GCPS", "TARGET_GEOREF"
     TOLERANCE, KEEP_UNVERIFIED = "TOLERANCE", "KEEP_UNVERIFIED"
     OUTPUT, GCP_LAYER, GCP_POINTS, GCP_VRT, REPORT = "OUTPUT", "GCP_LAYER", "GCP_POINTS", "GCP_VRT", "REPORT"
+    OUTPUT_HTML, OUTPUT_CRS, RESOLUTION, FORMAT = "OUTPUT_HTML", "OUTPUT_CRS", "RESOLUTION", "FORMAT"
+    CREATION_OPTIONS, FILL, NODATA = "CREATION_OPTIONS", "FILL", "NODATA"
 
     def method(self):
         """The registered method this algorithm runs (None for 'auto', which chooses among them)."""
@@ -108,6 +111,19 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             optional=True)))
         self.addParameter(_advanced(self._enum(self.TARGET_GEOREF, self.tr("Target's own georeferencing"))))
         self.addParameter(_advanced(self._enum(self.GRID, self.tr("Output pixel grid"))))
+        self.addParameter(_advanced(QgsProcessingParameterCrs(
+            self.OUTPUT_CRS, self.tr("Output CRS (empty: the reference's)"), optional=True)))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.RESOLUTION, self.tr("Output pixel size in output CRS units (empty: from the pixel grid)"),
+            QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.0)))
+        self.addParameter(_advanced(self._enum(self.FORMAT, self.tr("Output format"))))
+        self.addParameter(_advanced(QgsProcessingParameterString(
+            self.CREATION_OPTIONS, self.tr("GDAL creation options (KEY=VALUE, separated by spaces)"), "",
+            optional=True)))
+        self.addParameter(_advanced(self._enum(self.FILL, self.tr("Pixels outside the target"))))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.NODATA, self.tr("Nodata value (with 'Nodata value' above; empty: the target's, else 0)"),
+            QgsProcessingParameterNumber.Double, None, optional=True)))
         self.addParameter(_advanced(self._enum(self.REFINE, self.tr("Full-resolution refinement"))))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.MAX_WORKING_PIXELS, self.tr("Working image size (pixels)"), QgsProcessingParameterNumber.Integer,
@@ -135,6 +151,9 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             createByDefault=False))
         self.addParameter(QgsProcessingParameterFileDestination(
             self.REPORT, self.tr("Report"), self.tr("JSON (*.json)"), optional=True, createByDefault=False))
+        self.addParameter(QgsProcessingParameterFileDestination(
+            self.OUTPUT_HTML, self.tr("Quality report (pictures of the GCPs, residuals, overlay and check)"),
+            self.tr("HTML files (*.html)"), optional=True, createByDefault=True))
         self.addOutput(QgsProcessingOutputString("VERDICT", self.tr("Verdict of the independent check")))
         self.addOutput(QgsProcessingOutputString("METHOD", self.tr("Method that produced the result")))
         self.addOutput(QgsProcessingOutputNumber("RMSE_PX", self.tr("RMSE of the GCPs (reference pixels)")))
@@ -191,6 +210,13 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             self.GCP_POINTS: self.parameterAsFileOutput(parameters, self.GCP_POINTS, context),
             self.GCP_VRT: self.parameterAsFileOutput(parameters, self.GCP_VRT, context),
             self.REPORT: self.parameterAsFileOutput(parameters, self.REPORT, context),
+            self.OUTPUT_HTML: self.parameterAsFileOutput(parameters, self.OUTPUT_HTML, context),
+            self.OUTPUT_CRS: self._crs(parameters, context),
+            self.RESOLUTION: self._optional_number(parameters, self.RESOLUTION, context),
+            self.FORMAT: self.parameterAsEnum(parameters, self.FORMAT, context),
+            self.CREATION_OPTIONS: self.parameterAsString(parameters, self.CREATION_OPTIONS, context),
+            self.FILL: self.parameterAsEnum(parameters, self.FILL, context),
+            self.NODATA: self._optional_number(parameters, self.NODATA, context),
             self.TOLERANCE: self.parameterAsDouble(parameters, self.TOLERANCE, context),
             self.KEEP_UNVERIFIED: self.parameterAsBoolean(parameters, self.KEEP_UNVERIFIED, context),
         }
@@ -207,6 +233,16 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             else:
                 v[key] = self.parameterAsString(parameters, key, context)
         return v
+
+    def _crs(self, parameters, context):
+        crs = self.parameterAsCrs(parameters, self.OUTPUT_CRS, context)
+        if not crs.isValid():
+            return None
+        return crs.authid() or crs.toWkt()
+
+    def _optional_number(self, parameters, name, context):
+        value = parameters.get(name)
+        return None if value is None or value == "" else self.parameterAsDouble(parameters, name, context)
 
     def processAlgorithm(self, parameters, context, feedback):
         method = self.method()
@@ -247,9 +283,10 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         layer = written.get("gpkg")
         if layer and paths.gpkg_layer != "gcps":
             layer = f"{layer}|layername={paths.gpkg_layer}"
-        results = {self.OUTPUT: written.get("geotiff"), self.GCP_LAYER: layer,
+        results = {self.OUTPUT: written.get("raster"), self.GCP_LAYER: layer,
                    self.GCP_POINTS: written.get("points"), self.GCP_VRT: written.get("vrt"),
-                   self.REPORT: written.get("report"), "RMSE_PX": s["rmse_px"], "RMS_LOO_PX": s["rms_loo_px"],
+                   self.REPORT: written.get("report"), self.OUTPUT_HTML: written.get("html"),
+                   "RMSE_PX": s["rmse_px"], "RMS_LOO_PX": s["rms_loo_px"],
                    "N_GCPS": s["n_gcps"], "VERDICT": result.verification.verdict, "METHOD": result.method}
         return {k: v for k, v in results.items() if v is not None}
 

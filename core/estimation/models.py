@@ -310,7 +310,9 @@ class ThinPlateSplineModel:
             inv = np.linalg.pinv(system)
         sol = inv @ rhs
         if smoothing == 0:
-            loo = sol[:n] / np.diag(inv)[:n, None]  # Rippa (1999)
+            with np.errstate(divide="ignore", invalid="ignore"):  # a zero diagonal: duplicated points
+                loo = sol[:n] / np.diag(inv)[:n, None]  # Rippa (1999)
+            loo[~np.isfinite(loo)] = np.nan
         else:
             # Linear smoother S (fitted = S y); the leave-one-out lemma gives e_i / (1 - S_ii).
             k = _tps_kernel(((q[:, None, :] - q[None, :, :]) ** 2).sum(axis=2))

@@ -157,4 +157,5 @@ METHOD = register_method(Method(
             "on a grid, RANSAC and the chosen model. For SAR targets on optical references and other "
             "modality pairs (contrast inversion included). The thesis's line matcher is coarse='lines'.",
     citation="Ye et al. 2019, IEEE TGRS 57(11):9059-9070 (CFOG); " + THESIS, params_type=CfogParams,
-    match=match, refinement=STRUCTURAL_REFINEMENT), aliases=("lines-spectral",))
+    match=match, refinement=STRUCTURAL_REFINEMENT,
+    use_when="SAR, infrared or a map onto an optical image that is roughly north-up"), aliases=("lines-spectral",))

@@ -242,7 +242,8 @@ METHOD = register_method(Method(
     name="ndsift-pc", title="ND-SIFT + phase congruency (SAR)",
     summary=_SUMMARY + " Product: pre-smoothing, one-way ratio test, RANSAC, then correlation refinement on a grid.",
     citation=CITATION, params_type=ProductParams, match=match, default_model="similarity", refine="always",
-    refinement=SAR_REFINEMENT))
+    refinement=SAR_REFINEMENT,
+    use_when="SAR onto SAR (another date, band or polarisation), any rotation"))
 
 FAITHFUL = register_method(Method(
     name="ndsift-pc-faithful", title="ND-SIFT + phase congruency, as published",

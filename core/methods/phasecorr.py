@@ -52,4 +52,4 @@ METHOD = register_method(Method(
     match=match,
     default_model="similarity",
     kind="baseline",
-))
+    use_when="a pure shift between two images of one grid (the fastest check)"))

@@ -50,6 +50,9 @@ class Method:
     kind : str
         'method' for the product version of a published method, 'faithful' for its as-published
         version, 'baseline' for the comparisons they are measured against.
+    use_when : str
+        When a user should choose it (one short line for ``hamta methods``); faithful versions and
+        baselines say what they are for when left empty.
     """
 
     name: str
@@ -65,6 +68,15 @@ class Method:
     min_inliers: int = 8
     refine: str = "when-decimated"
     refinement: RefineParams = RefineParams()
+    use_when: str = ""
+
+    @property
+    def advice(self) -> str:
+        """:attr:`use_when`, or what a faithful version or a baseline is for."""
+        if self.use_when:
+            return self.use_when
+        return {"faithful": "reproducing the paper (the product version is better)",
+                "baseline": "comparisons (a paper's baseline)"}.get(self.kind, "")
 
     def make_params(self, values: Optional[Mapping[str, Any]] = None):
         """Build the parameter dataclass from ``values`` (strings are converted; an instance of the

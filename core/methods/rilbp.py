@@ -104,7 +104,8 @@ METHOD = register_method(Method(
     summary="CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, "
             "intensity-order sub-regions, CS-LBP in each pixel's radial frame); no orientation step. "
             "For optical satellite images with any rotation.",
-    citation=CITATION, params_type=RilbpMethodParams, match=match_with(rilbp_features)))
+    citation=CITATION, params_type=RilbpMethodParams, match=match_with(rilbp_features),
+    use_when="satellite images with strong rotation and illumination change"))
 
 FAITHFUL = register_method(Method(
     name="rilbp-faithful",

@@ -190,7 +190,8 @@ METHOD = register_method(Method(
             "intensity centroid, self-similar keypoints removed, mutual Hamming matching. Few, strong "
             "keypoints: fast. Product adds scale-aware description.",
     citation=CITATION, params_type=SibrifParams, match=match,
-    ransac_threshold_px=2.0))  # the paper gives none; sweep (docs/benchmarks.md): 1-5 px within 0.01 px median
+    ransac_threshold_px=2.0,  # the paper gives none; sweep (docs/benchmarks.md): 1-5 px within 0.01 px median
+    use_when="aerial or drone frames onto satellite imagery, when speed matters"))
 
 FAITHFUL = register_method(Method(
     name="sibrif-faithful",

@@ -43,4 +43,4 @@ METHOD = register_method(Method(
     params_type=SiftParams,
     match=match_with(sift_image_features, "SIFT keypoints"),
     kind="baseline",
-))
+    use_when="same sensor or similar optical images, any rotation and scale (what auto tries first)"))

@@ -230,4 +230,5 @@ METHOD = register_method(Method(
             "each hypothesis is checked densely with CFOG, the best are refined by local RIFT matching; "
             "full-resolution CFOG refinement.",
     citation=CITATION, params_type=XmodalParams, match=match, ransac_threshold_px=4.0, refine="always",
-    refinement=STRUCTURAL_REFINEMENT))
+    refinement=STRUCTURAL_REFINEMENT,
+    use_when="different modalities at any rotation and scale 1/2-2 (SAR, infrared, depth, maps, night lights)"))

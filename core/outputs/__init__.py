@@ -1,4 +1,4 @@
-"""Writing a registration's outputs: GeoTIFF, GCP VRT, QGIS ``.points``, GeoPackage, report.
+"""Writing a registration's outputs: the warped raster, GCP VRT, QGIS ``.points``, GeoPackage, reports.
 
 :func:`write_outputs` writes every requested file into a staging folder and publishes them as one
 set (:mod:`hamta.core.outputs.atomic`), so outputs appear whole or not at all and never mixed with
@@ -18,32 +18,40 @@ from ..errors import OutputError
 from ..options import OutputOptions
 from ..progress import Monitor
 from .atomic import OutputSet, check_output_path, check_writable_folder
-from .geotiff import write_geotiff, write_vrt
 from .gpkg import is_geopackage, write_gcp_layer
+from .html import write_html_report
+from .model_vrt import write_vrt
 from .points import write_points
 from .report import write_report
+from .warp import write_warped
 
 
 @dataclass(frozen=True)
 class OutputPaths:
-    """Where each output goes; None skips it."""
+    """Where each output goes; None skips it. ``raster`` is the warped target (GeoTIFF, COG or
+    VRT, see :mod:`hamta.core.outputs.warp`), ``html`` the visual quality report."""
 
-    geotiff: Optional[str] = None
+    raster: Optional[str] = None
     points: Optional[str] = None
     gpkg: Optional[str] = None
     vrt: Optional[str] = None
     report: Optional[str] = None
+    html: Optional[str] = None
     folder: Optional[str] = None  # a run folder whose whole set of names belongs to Hamta (the CLI layout)
     gpkg_layer: str = "gcps"  # the GCP layer's name; other layers of an existing GeoPackage are kept
 
-    LAYOUT = {"geotiff": "registered.tif", "points": "gcps.points", "gpkg": "gcps.gpkg", "vrt": "gcps.vrt",
-              "report": "report.json"}
+    LAYOUT = {"raster": "registered.tif", "points": "gcps.points", "gpkg": "gcps.gpkg", "vrt": "gcps.vrt",
+              "report": "report.json", "html": "report.html"}
+    OTHER_NAMES = ("registered.vrt",)  # the raster's name in the VRT format
 
     @classmethod
-    def in_folder(cls, folder: str, vrt: bool = False) -> "OutputPaths":
-        """The CLI layout: registered.tif, gcps.points, gcps.gpkg, report.json (+ gcps.vrt). Publishing
-        there replaces the folder's previous set whole (a rerun without ``vrt`` removes gcps.vrt)."""
+    def in_folder(cls, folder: str, vrt: bool = False, raster_format: str = "gtiff") -> "OutputPaths":
+        """The CLI layout: registered.tif (registered.vrt in the VRT format), gcps.points, gcps.gpkg,
+        report.json, report.html (+ gcps.vrt). Publishing there replaces the folder's previous set
+        whole (a rerun without ``vrt`` removes gcps.vrt)."""
         names = {k: os.path.join(folder, v) for k, v in cls.LAYOUT.items() if vrt or k != "vrt"}
+        if raster_format == "vrt":
+            names["raster"] = os.path.join(folder, "registered.vrt")
         return cls(folder=folder, **names)
 
     def as_dict(self) -> Dict[str, str]:
@@ -52,7 +60,9 @@ class OutputPaths:
 
     def owned(self) -> Dict[str, tuple]:
         """{folder: names of its set} for the CLI layout, else nothing."""
-        return {} if self.folder is None else {os.path.abspath(self.folder): tuple(self.LAYOUT.values())}
+        if self.folder is None:
+            return {}
+        return {os.path.abspath(self.folder): tuple(self.LAYOUT.values()) + self.OTHER_NAMES}
 
     def check(self) -> None:
         """Refuse unusable destinations before any work is done (names too long, folders...)."""
@@ -64,8 +74,8 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
                   is_canceled=None) -> Dict[str, str]:
     """Write the requested outputs of ``result``; returns {output name: absolute path}.
 
-    ``output`` chooses the GeoTIFF's resampling and pixel grid; see
-    :func:`hamta.core.outputs.geotiff.output_grid`.
+    ``output`` chooses the warped raster's format, CRS, grid, resampling and fill; see
+    :mod:`hamta.core.outputs.warp`.
     """
     monitor = Monitor(progress, is_canceled)
     wanted = {k: os.path.abspath(v) for k, v in paths.as_dict().items()}
@@ -75,9 +85,9 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
     run_id = uuid.uuid4().hex
     result = dataclasses.replace(result, run_id=run_id)
     with OutputSet(run_id, paths.owned()) as out, write_errors_named():
-        if "geotiff" in wanted:
-            write_geotiff(out.temp_for(wanted["geotiff"]), result, output.resampling, output.grid, output.resolution,
-                          monitor.span(0.0, 0.9), scratch=out.scratch(wanted["geotiff"]))
+        if "raster" in wanted:
+            write_warped(out.temp_for(wanted["raster"]), result, output, monitor.span(0.0, 0.85),
+                         scratch=out.scratch(wanted["raster"]))
         if "vrt" in wanted:
             write_vrt(out.temp_for(wanted["vrt"]), result, scratch=out.scratch(wanted["vrt"]))
         if "points" in wanted:
@@ -89,6 +99,9 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
             report = result.to_report()
             report.update(run_id=run_id, outputs=wanted, output_options=dataclasses.asdict(output))
             write_report(out.temp_for(wanted["report"]), report)
+        if "html" in wanted:
+            monitor.report(0.9, "writing the quality report")
+            write_html_report(out.temp_for(wanted["html"]), result, monitor.span(0.9, 1.0))
         monitor.check()  # the last moment a cancel stops the run: publishing is not interrupted
     monitor.report(1.0, "done")
     return wanted

@@ -144,7 +144,7 @@ class OutputSet:
         backup = os.path.join(staging, "replaced")
         os.mkdir(backup)
         moved = []  # (final, backup or None)
-        with folder_lock(folder):
+        with signals_deferred(), folder_lock(folder):
             try:
                 for final in list(mine) + stale:
                     if os.path.lexists(final):
@@ -170,6 +170,32 @@ class OutputSet:
                             os.replace(kept, final)
                 raise OutputError(f"Could not publish the outputs in '{folder}' ({err.strerror or err}); the "
                                   "folder was left as it was.") from None
+
+
+@contextlib.contextmanager
+def signals_deferred():
+    """Hold Ctrl-C and SIGTERM until the block ends (publishing is never left half done); the held
+    signal is handled right after, as it would have been. A no-op off the main thread."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    held, previous = [], {}
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        previous[sig] = signal.signal(sig, lambda signum, frame: held.append((signum, frame)))
+    try:
+        yield
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+        for signum, frame in held[:1]:
+            handler = previous[signum]
+            if callable(handler):
+                handler(signum, frame)
+            elif handler == signal.SIG_DFL:
+                signal.raise_signal(signum)
 
 
 @contextlib.contextmanager

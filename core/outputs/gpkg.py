@@ -13,6 +13,7 @@ from typing import Optional
 
 import numpy as np
 
+from .gcp_style import write_default_style
 from .points import destination_coordinates
 from .tags import verdict_text
 
@@ -78,6 +79,7 @@ def write_gcp_layer(path: str, result, layer: str = TABLE, base: Optional[str] =
                     "max_x, max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)",
                     (layer, "features", layer, description, bounds[0], bounds[1], bounds[2], bounds[3], srs_id))
         con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (layer, "geom", "POINT", srs_id, 0, 0))
+        write_default_style(con, layer)
         con.commit()
     finally:
         con.close()

@@ -21,7 +21,7 @@ def test_register_writes_every_output_and_prints_them(tmp_path, demo_pair, capsy
     for name in ("registered.tif", "gcps.points", "gcps.gpkg", "gcps.vrt", "report.json"):
         assert (out / name).is_file() and name in printed
     report = json.loads((out / "report.json").read_text())
-    assert report["method"] == "sift" and report["outputs"]["geotiff"].endswith("registered.tif")
+    assert report["method"] == "sift" and report["outputs"]["raster"].endswith("registered.tif")
 
 
 @pytest.mark.parametrize("model", ["affine", "tps"])
@@ -57,10 +57,21 @@ def test_former_method_name_still_works(tmp_path, demo_pair, capsys):
     assert json.loads((out / "report.json").read_text())["method"] == "cfog"
 
 
-def test_methods_lists_sift_with_parameters(capsys):
+def test_methods_is_a_short_table_and_verbose_lists_parameters(capsys):
     assert main(["methods"]) == 0
-    out = capsys.readouterr().out
-    assert "sift" in out and "--param ratio=0.8" in out
+    out = capsys.readouterr().out.splitlines()
+    rows = {line.split()[0]: line for line in out[1:] if line.strip() and not line.startswith("'")}
+    assert out[0].split() == ["method", "kind", "when", "to", "use"] and "auto" in rows and "xmodal" in rows
+    assert len(out) < 40 and "--param" not in rows["sift"]
+    assert main(["methods", "--verbose"]) == 0
+    assert "--param ratio=0.8" in capsys.readouterr().out
+
+
+def test_version(capsys):
+    from hamta.core.version import __version__
+
+    assert main(["--version"]) == 0
+    assert capsys.readouterr().out.strip() == f"hamta {__version__}"
 
 
 def test_console_script_is_installed_and_shows_progress(tmp_path, demo_pair):
@@ -87,7 +98,7 @@ def test_an_unverified_result_exits_3_and_writes_only_its_report(tmp_path, demo_
                "--tolerance", "0.01", "--out", str(out), "--quiet"])
     captured = capsys.readouterr()
     assert rc == 3 and "NOT VERIFIED" in captured.out and "No georeferenced output" in captured.err
-    assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["report.json"]
+    assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["report.html", "report.json"]
     report = json.loads((out / "report.json").read_text())
     assert report["quality"]["verdict"] != "verified" and report["quality"]["reasons"]
 

@@ -15,7 +15,7 @@ from hamta.core.coords import pixel_to_map
 from hamta.core.io.raster import open_raster
 from hamta.core.options import MODEL_CHOICES
 from hamta.core.outputs import OutputPaths, write_outputs
-from hamta.core.outputs.geotiff import write_model_vrt
+from hamta.core.outputs.model_vrt import write_model_vrt
 from hamta.core.outputs.points import HEADER, qgs_double, read_points
 from hamta.core.outputs.report import read_report
 
@@ -118,7 +118,7 @@ def test_warped_raster_agrees_with_the_model(tmp_path, results, raster_writer, m
     ramp = raster_writer("ramp.tif", np.stack([cols, rows]).astype("float64"))
     res = dataclasses.replace(res, target=open_raster(ramp))
     out = tmp_path / "warped.tif"
-    write_outputs(res, OutputPaths(geotiff=str(out)), output=OutputOptions(resampling="bilinear", resolution=8.0))
+    write_outputs(res, OutputPaths(raster=str(out)), output=OutputOptions(resampling="bilinear", resolution=8.0))
     with rasterio.open(out) as ds:
         data, tr = ds.read(), ds.transform
         assert ds.crs.to_epsg() == 32639
@@ -170,3 +170,70 @@ def test_unwritable_output_folder_is_a_clear_error(tmp_path, results):
     blocker.write_text("x")
     with pytest.raises(OutputError, match="Cannot create the output folder '.*file.txt/out'"):
         write_outputs(results["affine"], OutputPaths.in_folder(str(blocker / "out")))
+
+
+def _ramp_result(results, raster_writer, dtype="float64"):
+    res = results["affine"]
+    t = res.target
+    cols, rows = np.meshgrid(np.arange(t.width) + 0.5, np.arange(t.height) + 0.5)
+    ramp = raster_writer(f"ramp-{dtype}.tif", np.stack([cols, rows]).astype(dtype))
+    return dataclasses.replace(res, target=open_raster(ramp))
+
+
+def test_every_format_holds_the_same_pixels(tmp_path, results, raster_writer):
+    res = _ramp_result(results, raster_writer)
+    arrays = {}
+    for fmt, name in (("gtiff", "a.tif"), ("cog", "b.tif"), ("auto", "c.vrt")):
+        write_outputs(res, OutputPaths(raster=str(tmp_path / name)), output=OutputOptions(format=fmt))
+        with rasterio.open(tmp_path / name) as ds:
+            arrays[fmt] = ds.read()
+            assert ds.driver == ("VRT" if name.endswith(".vrt") else "GTiff") and ds.crs.to_epsg() == 32639
+            if fmt == "cog":
+                assert ds.overviews(1) and ds.tags(ns="IMAGE_STRUCTURE").get("LAYOUT") == "COG"
+            if fmt == "gtiff":
+                assert ds.profile["tiled"] and ds.compression.name == "deflate"
+    assert "<SourceDataset relativeToVRT=\"0\">" in (tmp_path / "c.vrt").read_text()
+    # The same warp for the COG; a VRT is warped block by block by GDAL, which does not widen the bilinear
+    # kernel where an output pixel is larger than a target pixel (the GeoTIFF, like gdalwarp, does).
+    for fmt, tolerance in (("cog", 1e-9), ("auto", 0.25)):
+        both = np.isfinite(arrays[fmt]) & np.isfinite(arrays["gtiff"])
+        assert both.mean() > 0.5 and np.abs(arrays[fmt] - arrays["gtiff"])[both].max() < tolerance, fmt
+
+
+def test_output_crs_keeps_every_pixel_where_the_model_puts_it(tmp_path, results, raster_writer):
+    from rasterio.warp import transform as reproject_points
+
+    res = _ramp_result(results, raster_writer)
+    out = tmp_path / "geo.tif"
+    write_outputs(res, OutputPaths(raster=str(out)), output=OutputOptions(crs="EPSG:4326"))
+    with rasterio.open(out) as ds:
+        data, tr = ds.read(), ds.transform
+        assert ds.crs.to_epsg() == 4326
+    r, c = np.array(data.shape[1:]) // 2
+    target_px = data[:, r, c]
+    lon, lat = tr * (c + 0.5, r + 0.5)
+    x, y = reproject_points("EPSG:4326", "EPSG:32639", [lon], [lat])
+    expected = pixel_to_map(res.reference.transform, res.model.apply(target_px[None]))[0]
+    assert np.hypot(x[0] - expected[0], y[0] - expected[1]) < 0.05 * abs(res.reference.transform.a)
+
+
+def test_valid_zeros_stay_valid_and_fill_is_chosen(tmp_path, results, raster_writer):
+    res = _ramp_result(results, raster_writer, "uint8")  # columns and rows mod 256: many valid zeros
+    out = tmp_path / "alpha.tif"
+    write_outputs(res, OutputPaths(raster=str(out)))
+    with rasterio.open(out) as ds:
+        assert ds.count == 3 and ds.nodata is None and ds.colorinterp[-1].name == "alpha"
+        data = ds.read()
+    inside = data[2] == 255
+    assert inside.mean() > 0.5 and (data[0][inside] == 0).sum() > 100  # valid zeros are kept as data
+    write_outputs(res, OutputPaths(raster=str(tmp_path / "nd.tif")),
+                  output=OutputOptions(fill="nodata", nodata=7, creation_options=("COMPRESS=LZW",)))
+    with rasterio.open(tmp_path / "nd.tif") as ds:
+        assert ds.count == 2 and ds.nodata == 7 and ds.compression.name == "lzw"
+
+
+@pytest.mark.parametrize("bad", [dict(format="png"), dict(fill="mask"), dict(crs="EPSG:999999"),
+                                 dict(creation_options=("COMPRESS",))])
+def test_bad_output_options_are_refused(bad):
+    with pytest.raises(ValueError):
+        OutputOptions(**bad)

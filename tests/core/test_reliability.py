@@ -17,7 +17,7 @@ import rasterio
 
 from hamta.cli.main import main
 
-OUT_SET = {"registered.tif", "gcps.points", "gcps.gpkg", "report.json"}
+OUT_SET = {"registered.tif", "gcps.points", "gcps.gpkg", "report.json", "report.html"}
 
 
 def _hashes(*paths):
@@ -327,3 +327,27 @@ def test_map_points_with_a_huge_spline_stays_within_memory(monkeypatch):
     monkeypatch.setattr(models, "_tps_kernel", lambda r2: widest.append(r2.size) or real(r2))
     out = tps.apply(rng.uniform(0, 1e4, (50, 2)))
     assert out.shape == (50, 2) and np.isfinite(out).all() and max(widest) <= 4_000_000
+
+
+def test_an_interrupt_during_publishing_waits_for_the_set_to_be_whole():
+    from hamta.core.outputs.atomic import signals_deferred
+
+    steps = []
+    with pytest.raises(KeyboardInterrupt):
+        with signals_deferred():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)
+            steps.append("published")
+    assert steps == ["published"]
+
+
+STRIPS = [("sibrif", (25, 586), "found only"), ("sibrif", (12, 600), "too small"), ("orb", (1, 100000), "too small"),
+          ("rilbp", (30, 600), "found only")]
+
+
+@pytest.mark.parametrize("method,shape,pattern", STRIPS)
+def test_thin_strips_end_with_a_message(method, shape, pattern, tmp_path, pair, capsys):
+    strip = _write(tmp_path / "strip.tif", np.random.default_rng(0).integers(0, 255, shape, dtype=np.uint8))
+    rc = main(_register(pair, tmp_path / "out", "--method", method, target=strip))
+    err = capsys.readouterr().err
+    assert rc == 1 and pattern in err and strip in err and "Traceback" not in err, err

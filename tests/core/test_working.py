@@ -66,7 +66,7 @@ def test_pixel_mode_without_reference_georeferencing(tmp_path, landsat):
     g = res.gcps[0]
     assert g.map_xy == pytest.approx(g.reference_px)  # map coordinates are reference pixels
     written = write_outputs(res, OutputPaths.in_folder(str(tmp_path / "out")))
-    with rasterio.open(written["geotiff"]) as ds:
+    with rasterio.open(written["raster"]) as ds:
         assert (ds.width, ds.height) == (data.shape[2], data.shape[1]) and ds.crs is None
         assert ds.transform == Affine.identity()
     crs, rows = read_points(written["points"])

@@ -28,7 +28,7 @@ def test_metadata_declares_a_processing_provider():
     meta.read(pathlib.Path(__file__).resolve().parents[2] / "metadata.txt")
     general = meta["general"]
     assert general["hasProcessingProvider"] == "yes" and general["qgisMinimumVersion"] == "3.22"
-    for key in ("name", "description", "about", "version", "author", "email", "repository"):
+    for key in ("name", "description", "about", "version", "author", "changelog", "tags"):
         assert general[key].strip()
 
 

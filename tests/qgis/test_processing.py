@@ -1,6 +1,7 @@
 """The Processing algorithm: parameters, outputs as layers, errors and cancellation."""
 import json
 import os
+import pathlib
 import subprocess
 
 import numpy as np
@@ -116,7 +117,7 @@ def test_parameter_mapping_is_pure():
     assert options.model == "tps" and options.refine == "off" and options.seed == 3
     assert options.target_band is None and options.reference_band == 2
     assert output.resampling == "cubic" and output.grid == "reference"
-    assert paths.geotiff == "/x/o.tif" and paths.points is None
+    assert paths.raster == "/x/o.tif" and paths.points is None
 
 
 def test_processing_run_writes_outputs_that_load_as_layers(provider, demo_pair, tmp_path):
@@ -132,7 +133,13 @@ def test_processing_run_writes_outputs_that_load_as_layers(provider, demo_pair, 
     assert res["N_GCPS"] >= 50 and 0 < res["RMSE_PX"] < 1.0
     report = json.loads(open(res["REPORT"]).read())
     assert report["model"]["type"] == "affine"
-    del raster, layer
+    renderer = layer.renderer()  # the default style stored in the GeoPackage: by residual, rejected apart
+    assert renderer.type() == "RuleRenderer"
+    rules = renderer.rootRule().children()
+    assert [r.filterExpression() for r in rules][-1] == '"enabled" = 0' and len(rules) == 5
+    counts = {r.label(): sum(1 for f in layer.getFeatures(r.filterExpression())) for r in rules}
+    assert counts["rejected match (not used for the fit)"] > 0 and sum(counts.values()) == layer.featureCount()
+    del raster, layer, renderer, rules
 
 
 def test_method_parameters_reach_the_core(provider, demo_pair, tmp_path):
@@ -200,3 +207,20 @@ def test_unverified_result_fails_clearly_unless_kept(provider, demo_pair, tmp_pa
     assert not (tmp_path / "o.tif").exists()
     res = processing.run("hamta:registersift", dict(params, KEEP_UNVERIFIED=True))
     assert res["VERDICT"] in ("suspect", "failed") and os.path.isfile(res["OUTPUT"])
+
+
+def test_output_control_vrt_crs_html_and_creation_options(provider, demo_pair, tmp_path):
+    res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "out.vrt"),
+                    OUTPUT_CRS="EPSG:4326", OUTPUT_HTML=str(tmp_path / "report.html")))
+    raster = QgsRasterLayer(res["OUTPUT"], "reg")
+    assert raster.isValid() and raster.crs().authid() == "EPSG:4326"
+    assert raster.dataProvider().name() == "gdal" and pathlib.Path(res["OUTPUT"]).read_text().startswith("<VRTDataset")
+    assert "data:image/jpeg;base64," in pathlib.Path(res["OUTPUT_HTML"]).read_text()
+    del raster
+    res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "c.tif"),
+                    FORMAT=2, CREATION_OPTIONS="COMPRESS=LZW BLOCKXSIZE=512 BLOCKYSIZE=512", FILL=2, NODATA=255))
+    import rasterio
+
+    with rasterio.open(res["OUTPUT"]) as ds:
+        assert ds.compression.name == "lzw" and ds.nodata == 255 and ds.overviews(1)
+        assert ds.block_shapes[0] == (512, 512)

@@ -1,0 +1,234 @@
+"""The warped target: every band resampled by GDAL (through rasterio) onto a north-up output grid.
+
+GDAL warps from the model VRT (:mod:`hamta.core.outputs.model_vrt`), which carries the fitted model
+exactly. Formats: a tiled, compressed GeoTIFF (written in strips of rows by a multithreaded warp, so
+progress is reported, cancellation is honoured and memory stays bounded), a cloud-optimised GeoTIFF
+(the same, then GDAL's COG driver adds the overviews), or a warped VRT (the transformation and the
+target's path, no pixels copied). Pixels the target does not cover are marked so that no valid
+pixel (a valid 0 included) becomes nodata: the target's own nodata value, its collar's value, NaN
+for floating-point data, or else an alpha band (:func:`fill_plan`).
+
+Coordinates: the output grid is in the output CRS (the reference CRS unless asked otherwise);
+models map target pixels to reference pixels (corner convention).
+"""
+from __future__ import annotations
+
+import math
+import os
+import warnings
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from typing import Optional, Tuple
+
+import numpy as np
+import rasterio
+import rasterio.shutil
+from affine import Affine
+from rasterio.crs import CRS
+from rasterio.enums import Resampling
+from rasterio.errors import NotGeoreferencedWarning
+from rasterio.vrt import WarpedVRT
+from rasterio.warp import reproject
+from rasterio.warp import transform as transform_points
+from rasterio.windows import Window
+
+from ..coords import as_xy, compose
+from ..errors import OutputError
+from ..estimation.models import local_jacobian
+from ..options import FORMAT, GRID, OutputOptions
+from ..progress import Monitor
+from .model_vrt import scratch_dir, write_model_vrt
+from .tags import verdict_tags
+
+PLACEHOLDER_CRS = CRS.from_epsg(3857)  # lets GDAL warp between two grids of a raster without CRS
+STRIP_BYTES = 48 * 2 ** 20  # one strip of output rows (all bands) in memory at a time
+WARP_MEMORY_MB = 256
+THREADS = max(1, min(os.cpu_count() or 1, 4))
+GTIFF_OPTIONS = {"TILED": "YES", "BLOCKXSIZE": "256", "BLOCKYSIZE": "256", "COMPRESS": "DEFLATE",
+                 "BIGTIFF": "IF_SAFER", "INTERLEAVE": "BAND"}
+COG_OPTIONS = {"COMPRESS": "DEFLATE", "BIGTIFF": "IF_SAFER", "OVERVIEW_RESAMPLING": "AVERAGE"}
+
+
+def output_format(path: str, fmt: str = "auto") -> str:
+    """'gtiff', 'cog' or 'vrt': ``fmt``, or with 'auto' from the file name (.vrt: a VRT)."""
+    fmt = FORMAT.check(fmt)
+    if fmt != "auto":
+        return fmt
+    return "vrt" if path.lower().endswith(".vrt") else "gtiff"
+
+
+@dataclass(frozen=True)
+class Fill:
+    """How pixels outside the target are marked: a ``nodata`` value, or an ``alpha`` band; ``source``
+    is the value of the target's own pixels that are not data (nodata or collar), if any."""
+
+    nodata: Optional[float]
+    alpha: bool
+    source: Optional[float]
+
+
+def fill_plan(target, dtype: str, output: OutputOptions) -> Fill:
+    """The :class:`Fill` for ``target`` (a :class:`~hamta.core.io.raster.RasterInfo`) of pixel type ``dtype``."""
+    source = target.nodata if target.nodata is not None else target.collar
+    if output.fill == "alpha":
+        return Fill(None, True, source)
+    if output.fill == "nodata":
+        value = output.nodata if output.nodata is not None else (source if source is not None else 0.0)
+        return Fill(float(value), False, source)
+    if source is not None:
+        return Fill(float(source), False, source)
+    if np.issubdtype(np.dtype(dtype), np.floating):
+        return Fill(float("nan"), False, None)
+    return Fill(None, True, None)
+
+
+def output_grid(result, grid: str = "auto", resolution: Optional[float] = None, crs: Optional[str] = None
+                ) -> Tuple[Affine, int, int, Optional[CRS]]:
+    """(transform, width, height, crs) of the warped output, north-up.
+
+    In the reference CRS: 'reference' uses the reference pixel size and grid; 'native' keeps the
+    target's own resolution (snapped to the reference grid origin); 'auto' picks 'reference' when
+    the two resolutions are within 10 %. ``resolution`` (output CRS units) overrides the pixel size.
+    In another ``crs`` the same pixel size is carried over at the centre and the grid is aligned to
+    multiples of it. In pixel mode the output is the reference pixel grid itself.
+    """
+    GRID.check(grid)
+    ref = result.reference
+    if result.pixel_mode:
+        if crs is not None:
+            raise OutputError("An output CRS needs a georeferenced reference; the reference "
+                              f"'{ref.path}' has none, so the output is on its pixel grid.")
+        return Affine.identity(), ref.width, ref.height, None
+    t = result.target
+    s = np.linspace(0, 1, 33)
+    edge = np.concatenate([np.column_stack([s * t.width, 0 * s]), np.column_stack([s * t.width, 0 * s + t.height]),
+                           np.column_stack([0 * s, s * t.height]), np.column_stack([0 * s + t.width, s * t.height])])
+    mp = result.reference_to_map(result.model.apply(edge))
+    centre = as_xy([t.width / 2.0, t.height / 2.0])
+    scale = math.sqrt(abs(np.linalg.det(local_jacobian(result.model, centre)[0])))  # ref px per target px
+    res_x, res_y = abs(ref.transform.a) or ref.pixel_size, abs(ref.transform.e) or ref.pixel_size
+    if grid == "native" or (grid == "auto" and not 0.9 <= scale <= 1.1):
+        res_x, res_y = res_x * scale, res_y * scale
+    out_crs = ref.crs if crs is None else CRS.from_user_input(crs)
+    x0, y0 = ref.transform.c, ref.transform.f
+    if out_crs != ref.crs:
+        if ref.crs is None:
+            raise OutputError(f"An output CRS needs a reference with a CRS; '{ref.path}' has none.")
+        mid = result.reference_to_map(result.model.apply(centre))[0]
+        probe = np.array([mid, mid + [res_x, 0.0], mid + [0.0, res_y]])
+        px, py = transform_points(ref.crs, out_crs, probe[:, 0], probe[:, 1])
+        step = math.sqrt(math.hypot(px[1] - px[0], py[1] - py[0]) * math.hypot(px[2] - px[0], py[2] - py[0]))
+        res_x = res_y = step
+        xs, ys = transform_points(ref.crs, out_crs, mp[:, 0], mp[:, 1])
+        mp = np.column_stack([xs, ys])
+        x0 = y0 = 0.0
+    if resolution is not None:
+        res_x = res_y = float(resolution)
+    if not np.isfinite(mp).all():
+        raise OutputError(f"The fitted model does not map '{t.path}' to finite coordinates in the output CRS.")
+    xmin = x0 + math.floor((mp[:, 0].min() - x0) / res_x) * res_x
+    xmax = x0 + math.ceil((mp[:, 0].max() - x0) / res_x) * res_x
+    ymax = y0 - math.floor((y0 - mp[:, 1].max()) / res_y) * res_y
+    ymin = y0 - math.ceil((y0 - mp[:, 1].min()) / res_y) * res_y
+    width, height = int(round((xmax - xmin) / res_x)), int(round((ymax - ymin) / res_y))
+    out_px_per_target_px = (xmax - xmin) * (ymax - ymin) / max(res_x * res_y, 1e-300) / (t.width * t.height)
+    limit = 16 * t.width * t.height * max(out_px_per_target_px, 1.0) + 1e6
+    if width * height > limit or width <= 0 or height <= 0:
+        raise OutputError(f"The fitted model maps '{t.path}' onto an implausible {width} x {height} pixel "
+                          "grid; the registration is probably wrong, so no raster was written.")
+    return Affine(res_x, 0, xmin, 0, -res_y, ymax), width, height, out_crs
+
+
+def write_warped(path: str, result, output: OutputOptions = OutputOptions(), monitor: Optional[Monitor] = None,
+                 scratch: Optional[str] = None) -> str:
+    """Warp every band of the target onto the output grid and write it at ``path`` in the format
+    :func:`output_format` picks; returns that format."""
+    monitor = monitor or Monitor()
+    fmt = output_format(path, output.format)
+    transform, width, height, crs = output_grid(result, output.grid, output.resolution, output.crs)
+    warp_crs = crs or PLACEHOLDER_CRS
+    with scratch_dir(scratch) as tmp:
+        vrt = os.path.join(tmp, f"model-{os.getpid()}.vrt")
+        options = write_model_vrt(vrt, result, warp_crs.to_wkt(), scratch=tmp)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", NotGeoreferencedWarning)
+            with rasterio.open(vrt) as src:
+                fill = fill_plan(result.target, src.dtypes[0], output)
+                grid = (transform, width, height, crs, warp_crs)
+                if fmt == "vrt":
+                    _write_warped_vrt(path, src, result, grid, fill, output, options)
+                elif fmt == "cog":
+                    staged = os.path.join(tmp, f"cog-{os.getpid()}.tif")
+                    _write_gtiff(staged, src, result, grid, fill, output, options, monitor.span(0.0, 0.8), {})
+                    monitor.report(0.8, "writing overviews")
+                    rasterio.shutil.copy(staged, path, driver="COG", **_creation(COG_OPTIONS, output))
+                else:
+                    _write_gtiff(path, src, result, grid, fill, output, options, monitor, GTIFF_OPTIONS)
+    monitor.report(1.0, "writing")
+    return fmt
+
+
+def _creation(defaults: dict, output: OutputOptions) -> dict:
+    options = dict(defaults)
+    for item in output.creation_options:
+        key, value = item.split("=", 1)
+        options[key.strip().upper()] = value.strip()
+    return options
+
+
+def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, options, monitor: Monitor, defaults):
+    transform, width, height, crs, warp_crs = grid
+    count = src.count + (1 if fill.alpha else 0)
+    dtype = src.dtypes[0]
+    profile = dict(driver="GTiff", width=width, height=height, count=count, dtype=dtype, nodata=fill.nodata,
+                   **_creation(defaults, output))
+    if crs is not None:
+        profile.update(crs=crs, transform=transform)
+    bands = list(range(1, src.count + 1))
+    row_bytes = max(width * count * np.dtype(dtype).itemsize, 1)
+    rows = max(256, int(STRIP_BYTES // row_bytes) // 256 * 256)
+    resampling = Resampling[output.resampling]
+    with rasterio.open(path, "w", **profile) as dst:
+        for r0 in range(0, height, rows):
+            monitor.check()
+            n = min(rows, height - r0)
+            block = np.zeros((count, n, width), dtype=dtype)
+            if fill.nodata is not None:
+                block[:] = fill.nodata
+            reproject(rasterio.band(src, bands), block, src_nodata=fill.source,
+                      dst_transform=compose(transform, Affine.translation(0, r0)), dst_crs=warp_crs,
+                      dst_nodata=fill.nodata, dst_alpha=count if fill.alpha else 0, resampling=resampling,
+                      num_threads=THREADS, warp_mem_limit=WARP_MEMORY_MB, **options)
+            dst.write(block, window=Window(0, r0, width, n))
+            monitor.report((r0 + n) / height, "writing raster")
+        interp = list(src.colorinterp)
+        if fill.alpha:
+            from rasterio.enums import ColorInterp
+
+            interp.append(ColorInterp.alpha)
+        dst.colorinterp = interp
+        dst.update_tags(**verdict_tags(result))
+
+
+def _write_warped_vrt(path, src, result, grid, fill: Fill, output: OutputOptions, options):
+    """A VRTWarpedDataset reading the target itself (absolute path) through the serialised transformer."""
+    transform, width, height, crs, warp_crs = grid
+    with WarpedVRT(src, crs=warp_crs, transform=transform, width=width, height=height,
+                   resampling=Resampling[output.resampling], src_nodata=fill.source, nodata=fill.nodata,
+                   add_alpha=fill.alpha, warp_mem_limit=WARP_MEMORY_MB, NUM_THREADS=str(THREADS), **options) as vrt:
+        staged = path + ".staged.vrt"
+        rasterio.shutil.copy(vrt, staged, driver="VRT")
+    tree = ET.parse(staged)
+    os.remove(staged)
+    root = tree.getroot()
+    for el in root.iter("SourceDataset"):
+        el.text = os.path.abspath(result.target.path)
+        el.set("relativeToVRT", "0")
+    metadata = ET.Element("Metadata")
+    for key, value in verdict_tags(result).items():
+        ET.SubElement(metadata, "MDI", key=key).text = value
+    root.insert(0, metadata)
+    if crs is None:
+        for el in root.findall("SRS"):
+            root.remove(el)
+    tree.write(path, encoding="UTF-8")

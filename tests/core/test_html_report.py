@@ -1,0 +1,159 @@
+"""The visual report (``report.html``): self-contained, every image decodes, verdict and reasons
+shown, the target warped correctly onto the reference for any model type, previews bounded."""
+import base64
+import dataclasses
+import html
+import re
+
+import cv2
+import numpy as np
+import pytest
+
+from hamta.core import RegisterOptions, register
+from hamta.core.errors import RegistrationCanceled
+from hamta.core.estimation.models import LinearModel, PolynomialModel
+from hamta.core.io.raster import open_raster
+from hamta.core.outputs import html as report_html
+from hamta.core.outputs.html import Preview, read_preview, warp_to_reference, write_html_report
+from hamta.core.progress import Monitor
+
+IMG = re.compile(r'<img[^>]*?src="data:image/(?:png|jpeg);base64,([A-Za-z0-9+/=]+)"[^>]*?alt="([^"]*)"')
+
+
+@pytest.fixture(scope="module")
+def sift_result(demo_pair):
+    return register(demo_pair["target"], demo_pair["reference"], method="sift")
+
+
+def _write(result, tmp_path, name="report.html") -> str:
+    path = tmp_path / name
+    write_html_report(str(path), result)
+    assert path.is_file()
+    return path.read_text(encoding="utf-8")
+
+
+def _images(text: str) -> dict:
+    """{alt: decoded image} of every embedded PNG."""
+    out = {}
+    for data, alt in IMG.findall(text):
+        img = cv2.imdecode(np.frombuffer(base64.b64decode(data), np.uint8), cv2.IMREAD_UNCHANGED)
+        assert img is not None, f"image '{alt}' does not decode"
+        out[alt] = img
+    return out
+
+
+def test_report_is_self_contained_and_every_image_is_real(sift_result, tmp_path):
+    text = _write(sift_result, tmp_path)
+    assert re.search(r"class=word[^>]*>verified<", text)
+    assert "not how accurate" in text
+    assert not re.search(r'(src|href)="(?!data:)', text), "only embedded resources"
+    assert "http://" not in text and "https://" not in text and "@import" not in text
+    assert text.count("<script") == 0 and text.count("oninput=") == 1
+    images = _images(text)
+    assert text.count("data:image/png;base64,") + text.count("data:image/jpeg;base64,") == len(images) >= 8
+    for alt, img in images.items():
+        assert min(img.shape[:2]) >= 100 and max(img.shape[:2]) <= 1000, alt
+        assert float(img[..., :3].std()) > 5.0, f"image '{alt}' is (nearly) constant"
+    for alt in ("checkerboard", "residual histogram", "residual vectors", "check sites", "target with GCPs",
+                "reference with GCPs", "warped target"):
+        assert alt in images
+    assert max(images["reference with GCPs"].shape[:2]) == 800
+    # The checkerboard holds tinted target tiles and grey reference tiles.
+    board = images["checkerboard"].astype(int)
+    tinted = np.abs(board[..., 2] - board[..., 0]) > 8
+    assert 0.2 < tinted.mean() < 0.6
+    # Residual arrows are coloured; the rest of the image is grey.
+    arrows = images["residual vectors"].astype(int)
+    assert (np.abs(arrows[..., 2] - arrows[..., 0]) > 60).sum() > 500
+
+
+def test_gcp_table_is_capped(sift_result, tmp_path):
+    text = _write(sift_result, tmp_path)
+    omitted = len(sift_result.gcps) - report_html.MAX_TABLE_ROWS
+    assert omitted > 0
+    assert f"{omitted} more rows not shown" in text
+    assert f"<td class=n>{report_html.MAX_TABLE_ROWS}</td>" in text
+    assert f"<td class=n>{report_html.MAX_TABLE_ROWS + 1}</td>" not in text
+
+
+def test_auto_attempts_notes_and_escaping(sift_result, tmp_path):
+    auto = {"attempts": [{"method": "orb", "outcome": "failed", "time_s": 0.5, "reason": "<b>no</b> support"},
+                         {"method": "sift", "outcome": "verified", "time_s": 1.25, "reason": "verified"}],
+            "chosen": 1}
+    result = dataclasses.replace(sift_result, auto=auto, notes=["a <script>alert(1)</script> note"])
+    text = _write(result, tmp_path)
+    assert "Attempts of" in text and "sift <b>(chosen)</b>" in text and "1.25 s" in text
+    assert html.escape("<b>no</b> support") in text
+    assert "<script>alert" not in text and html.escape("<script>alert(1)</script>") in text
+
+
+def test_unverified_result_shows_its_reasons(demo_pair, tmp_path):
+    result = register(demo_pair["target"], demo_pair["reference"], method="sift",
+                      options=RegisterOptions(tolerance_px=0.01))
+    v = result.verification
+    assert not v.verified and v.reasons
+    text = _write(result, tmp_path)
+    assert re.search(rf"class=word[^>]*>{v.verdict}<", text)
+    for reason in v.reasons:
+        assert html.escape(reason) in text
+    assert "0.01 px" in text
+
+
+def test_tps_model(demo_pair, tmp_path):
+    result = register(demo_pair["target"], demo_pair["reference"], method="sift", options=RegisterOptions(model="tps"))
+    assert result.model.kind == "tps" and not hasattr(result.model, "inverse")
+    text = _write(result, tmp_path)
+    assert "<b>tps</b>" in text and "values (in report.json)" in text
+    assert "checkerboard" in _images(text)
+    ref = read_preview(result.reference, None)
+    warped, ok = warp_to_reference(result.model, read_preview(result.target, None), ref)
+    assert ok.mean() > 0.4
+    assert np.corrcoef(warped[ok].astype(float), ref.image[ok].astype(float))[0, 1] > 0.8
+
+
+def test_warp_follows_the_model_to_the_pixel():
+    """A translation by (+3, -2) px, as a matrix (exact inverse) and as a polynomial (Newton inverse):
+    reference pixel (x, y) shows target pixel (x - 3, y + 2)."""
+    rng = np.random.default_rng(0)
+    tgt_img = cv2.GaussianBlur(rng.uniform(0, 255, (120, 160)), (0, 0), 2).astype(np.float32)
+    tgt = Preview(report_html.stretch(tgt_img, np.ones(tgt_img.shape, bool)), np.ones(tgt_img.shape, bool), (1.0, 1.0))
+    ref = Preview(np.zeros((100, 140), np.uint8), np.ones((100, 140), bool), (1.0, 1.0))
+    src = rng.uniform(0, 160, (20, 2))
+    models = [LinearModel("affine", np.array([[1.0, 0, 3], [0, 1, -2], [0, 0, 1]])),
+              PolynomialModel.fit(2, src, src + [3.0, -2.0])]
+    for model in models:
+        warped, ok = warp_to_reference(model, tgt, ref)
+        expected = tgt.image[2:102, 0:137]
+        assert ok[:, 3:].all() and not ok[:, :3].any()
+        assert np.abs(warped[:, 3:].astype(int) - expected.astype(int)).max() <= 1
+
+
+def test_preview_coordinates_put_pixel_centres_at_integers():
+    p = Preview(np.zeros((10, 10), np.uint8), np.ones((10, 10), bool), (2.0, 4.0))
+    assert np.allclose(p.to_opencv([[1.0, 2.0], [3.0, 6.0]]), [[0.0, 0.0], [1.0, 1.0]])
+    assert np.allclose(p.to_full([[0.5, 0.5]]), [[1.0, 2.0]])
+
+
+def test_previews_are_read_decimated(raster_writer, monkeypatch):
+    shapes = []
+    real = report_html.read_image
+
+    def spy(info, bands, window=None, out_shape=None, dataset=None):
+        shapes.append(out_shape)
+        return real(info, bands, window, out_shape, dataset)
+
+    monkeypatch.setattr(report_html, "read_image", spy)
+    rng = np.random.default_rng(1)
+    big = open_raster(raster_writer("big.tif", rng.integers(0, 255, (1500, 2400), dtype=np.uint8)))
+    p = read_preview(big, None)
+    assert shapes[-1] == (500, 800) and p.image.shape == (500, 800) and p.scale == (3.0, 3.0)
+    small = open_raster(raster_writer("small.tif", rng.integers(0, 255, (50, 100), dtype=np.uint8)))
+    p = read_preview(small, None)
+    assert shapes[-1] == (50, 100) and p.image.shape == (400, 800) and p.scale == (0.125, 0.125)
+
+
+def test_cancel_writes_nothing(sift_result, tmp_path):
+    path = tmp_path / "report.html"
+    with pytest.raises(RegistrationCanceled):
+        write_html_report(str(path), sift_result, Monitor(is_canceled=lambda: True))
+    assert not path.exists()
