@@ -26,8 +26,9 @@ from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
 from .synthetic import make_landscape
 
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
-            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large",)
-# The real multimodal set (600 pairs) and 'large' (a Sentinel-2-sized scene, ~1 GB of files) run on request.
+            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large", "writing")
+# The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files) and 'writing' (the
+# output writer against gdalwarp, no registration cases of its own) run on request.
 DEFAULT_FAMILIES = FAMILIES[:10]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
@@ -264,7 +265,8 @@ def _large(quick):
 _SPECS = {"crops": _crops, "should-fail": _should_fail,
           **{f: _multimodal_set(f) for f in multimodal_set.CATEGORIES},
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
-          "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large}
+          "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
+          "writing": lambda quick: []}
 
 
 # ----------------------------------------------------------------------------------------------

@@ -20,9 +20,10 @@ def judge(case, result=None, error: Optional[BaseException] = None) -> dict:
            "verified": False, "false_verified": False, "false_flagged": False, "method_used": None}
     if result is not None:
         v = result.verification
+        matrix = getattr(result.model, "matrix", None)
         row.update(verdict=v.verdict if v else None, verified=bool(result.verified), method_used=result.method,
                    quality={k: x for k, x in (v.to_dict() if v else {}).items() if k != "sites"},
-                   auto=result.auto)
+                   auto=result.auto, model_matrix=None if matrix is None else np.asarray(matrix).tolist())
     if case.truth is None:  # nothing to find: any verified result is a confident wrong answer
         row.update(success=result is None or not result.verified, false_verified=bool(result and result.verified),
                    error=None if error is None else f"{type(error).__name__}: {error}")

@@ -86,7 +86,7 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
             best, chosen = result, len(attempts) - 1
         if result.verified:
             break
-    monitor.report(1.0, "done")
+    monitor.report(1.0, "registered")
     if best is None:
         raise InsufficientMatchesError(
             "No method found a registration ('auto' tried " + "; ".join(

@@ -16,7 +16,7 @@ from .types import Correspondences, Matches
 from .verify import Verification
 from .version import __version__
 
-REPORT_SCHEMA_VERSION = 2
+REPORT_SCHEMA_VERSION = 3
 
 
 @dataclass(frozen=True)

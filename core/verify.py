@@ -37,7 +37,6 @@ import cv2
 import numpy as np
 from rasterio.windows import Window
 from scipy import fft as sfft
-from scipy import stats
 from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
@@ -303,6 +302,8 @@ def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: 
     lifted = measured & (np.nan_to_num(z, nan=-np.inf) > z_level)
     z_hits = int(lifted.sum())
     z_chance = _tail(z_hits, n, 0.05)
+    from scipy import stats  # loaded when a registration is verified, not when the engine is imported
+
     z_mw = (float(stats.mannwhitneyu(z[measured], z_null, alternative="greater").pvalue)
             if n and len(z_null) >= 8 else 1.0)
     significant = chance <= params.max_chance or (z_chance <= params.max_z_chance and z_mw <= params.max_rank_chance)
@@ -375,6 +376,8 @@ def _rate(hits: np.ndarray, valid: np.ndarray, floor: float) -> float:
 
 def _tail(k: int, n: int, rate: float) -> float:
     """Probability of ``k`` or more hits among ``n`` sites at chance ``rate`` (1 without sites)."""
+    from scipy import stats
+
     return float(stats.binom.sf(k - 1, n, rate)) if n and k else 1.0
 
 

@@ -263,7 +263,9 @@
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="284"/>
-        <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.&lt;br&gt;&lt;br&gt;Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</source>
+        <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.
+
+Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -273,7 +275,9 @@
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="298"/>
-        <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</source>
+        <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.
+
+Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -283,7 +287,9 @@
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="314"/>
-        <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
+        <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.
+
+Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -293,7 +299,9 @@
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="330"/>
-        <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.&lt;br&gt;&lt;br&gt;Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</source>
+        <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.
+
+Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -303,7 +311,9 @@
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="347"/>
-        <source>Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale (up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method &apos;lines-spectral-faithful&apos; is the thesis&apos;s line-intersection matcher as written (Radon lines, eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register.&lt;br&gt;&lt;br&gt;References: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684</source>
+        <source>Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale (up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method &apos;lines-spectral-faithful&apos; is the thesis&apos;s line-intersection matcher as written (Radon lines, eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register.
+
+References: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -373,7 +383,9 @@
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="367"/>
-        <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.&lt;br&gt;&lt;br&gt;References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Processing 29:3296-3310; J. Li, Q. Hu and Y. Zhang (2023), Multimodal image matching: a scale-invariant algorithm and an open dataset, ISPRS Journal of Photogrammetry and Remote Sensing 204:77-88; Y. Ye et al. (2019), CFOG, IEEE TGRS 57(11):9059-9070.</source>
+        <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.
+
+References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Processing 29:3296-3310; J. Li, Q. Hu and Y. Zhang (2023), Multimodal image matching: a scale-invariant algorithm and an open dataset, ISPRS Journal of Photogrammetry and Remote Sensing 204:77-88; Y. Ye et al. (2019), CFOG, IEEE TGRS 57(11):9059-9070.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>

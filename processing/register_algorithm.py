@@ -332,7 +332,7 @@ class RegisterSiftAlgorithm(RegisterAlgorithm):
         "Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe's ratio "
         "test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted "
         "on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS "
-        "Georeferencer .points file, a VRT carrying the GCPs and a JSON report.<br><br>Reference: D. G. Lowe "
+        "Georeferencer .points file, a VRT carrying the GCPs and a JSON report.\n\nReference: D. G. Lowe "
         "(2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, "
         "doi:10.1023/B:VISI.0000029664.99615.94")
 
@@ -348,7 +348,7 @@ class RegisterRilbpAlgorithm(RegisterAlgorithm):
         "centre-symmetric LBP in each pixel's radial frame; no orientation step), mutual ratio-test matching, "
         "seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel "
         "keypoints and smoothed, radius-2 codes; the CLI method 'rilbp-faithful' is the paper as written."
-        "<br><br>Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern "
+        "\n\nReference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern "
         "descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; "
         "M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.")
 
@@ -364,7 +364,7 @@ class RegisterSibrifAlgorithm(RegisterAlgorithm):
         "centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, "
         "strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its "
         "own scale and add a ratio test; the CLI method 'sibrif-faithful' is the paper as written."
-        "<br><br>Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image "
+        "\n\nReference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image "
         "matching based on selective scale and rotation (SIBRIF).")
 
 
@@ -381,7 +381,7 @@ class RegisterNdsiftAlgorithm(RegisterAlgorithm):
         "matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters "
         "hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use "
         "a one-way ratio test; the CLI method 'ndsift-pc-faithful' is the paper as written."
-        "<br><br>Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration "
+        "\n\nReference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration "
         "using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters "
         "12(3):562-566, doi:10.1109/LGRS.2014.2351396")
 
@@ -400,7 +400,7 @@ class RegisterSarOpticalAlgorithm(RegisterAlgorithm):
         "similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method "
         "'lines-spectral-faithful' is the thesis's line-intersection matcher as written (Radon lines, eigenvector "
         "and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register."
-        "<br><br>References: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. "
+        "\n\nReferences: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. "
         "thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), "
         "Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on "
         "Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684")
@@ -417,7 +417,7 @@ class RegisterCrossModalAlgorithm(RegisterAlgorithm):
         "features vote for rotation and scale, each hypothesis is checked densely with CFOG structural "
         "descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the "
         "result is refined at full resolution with CFOG and checked independently. Its baseline, the published "
-        "RIFT2 matcher, is the CLI method 'rift'.<br><br>References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE "
+        "RIFT2 matcher, is the CLI method 'rift'.\n\nReferences: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE "
         "Transactions on Image Processing 29:3296-3310; J. Li, Q. Hu and Y. Zhang (2023), Multimodal image "
         "matching: a scale-invariant algorithm and an open dataset, ISPRS Journal of Photogrammetry and Remote "
         "Sensing 204:77-88; Y. Ye et al. (2019), CFOG, IEEE TGRS 57(11):9059-9070.")

@@ -5,6 +5,7 @@ the bench's worker pool (``run_unit(unit, config) -> list of row dicts``) and tu
 tables (``tables(rows) -> list of {"title", "columns", "rows", "note"}``) that the bench prints and
 stores. It runs when one of its ``methods`` is benchmarked and one of its ``families`` is selected.
 A reproduction with ``units = None`` is computed from the benchmark's own rows of its families.
+``writing`` is the project's own study of its output writer against ``gdalwarp``, run the same way.
 """
 from __future__ import annotations
 
@@ -18,5 +19,6 @@ def all_reproductions():
     from .ndsift import REPRODUCTION as ndsift
     from .rilbp import REPRODUCTION as rilbp
     from .sibrif import REPRODUCTION as sibrif
+    from .writing import REPRODUCTION as writing
 
-    return [rilbp, sibrif, ndsift, lines_spectral]
+    return [rilbp, sibrif, ndsift, lines_spectral, writing]
