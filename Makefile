@@ -6,7 +6,7 @@ VENV := .venv
 QVENV := .venv-qgis
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := qgis python3-qgis qgis-providers python3-numpy python3-scipy python3-opencv python3-rasterio \
-	python3-pyproj python3-shapely python3-pytest python3-hypothesis python3-venv python3-setuptools python3-wheel gdal-bin \
+	python3-pyproj python3-shapely python3-distributed python3-pytest python3-hypothesis python3-venv python3-setuptools python3-wheel gdal-bin \
 	qttools5-dev-tools pyqt5-dev-tools
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 

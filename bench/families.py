@@ -23,12 +23,14 @@ from ..core.coords import apply_matrix, compose
 from ..core.preprocess.sar import lee_filter
 from . import multimodal_set, trust
 from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
+from .nonrigid import nonrigid_case
 from .synthetic import make_landscape
 
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
-            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large", "writing")
-# The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files) and 'writing' (the
-# output writer against gdalwarp, no registration cases of its own) run on request.
+            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid")
+# The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
+# output writer against gdalwarp, no registration cases of its own) and 'nonrigid' (local distortion, for the
+# local correction) run on request.
 DEFAULT_FAMILIES = FAMILIES[:10]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
@@ -258,6 +260,14 @@ def _multimodal_set(family):
     return lambda quick: [CaseSpec(family, str(i), {"pair": i}) for i in multimodal_set.pair_ids(quick)]
 
 
+def _nonrigid(quick):
+    sources = ("landsat",) if quick else ("landsat", "multitemporal", "landscape")
+    kinds = (("smooth", 0),) if quick else (("smooth", 0), ("patches", 2))
+    amplitudes = (3.0,) if quick else (2.0, 4.0)
+    return [CaseSpec("nonrigid", f"{src}_{kind}_{a:g}px", {"source": src, "amplitude": a, "patches": n})
+            for src in sources for kind, n in kinds for a in amplitudes]
+
+
 def _large(quick):
     return [CaseSpec("large", "s2_10980px", {"source": "landscape", "size": 10980, "shift": (37, -21)})]
 
@@ -266,7 +276,7 @@ _SPECS = {"crops": _crops, "should-fail": _should_fail,
           **{f: _multimodal_set(f) for f in multimodal_set.CATEGORIES},
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
-          "writing": lambda quick: []}
+          "writing": lambda quick: [], "nonrigid": _nonrigid}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -284,6 +294,9 @@ def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
         return multimodal_set.build(spec.family, p["pair"], data_dir)
     if spec.family == "large":
         return _large_case(folder, name, p["size"], p["shift"])
+    if spec.family == "nonrigid":
+        return nonrigid_case(folder, name, load_source(p["source"], size, data_dir), rng, p["amplitude"],
+                             p["patches"])
     # Speckle lives at the sensor's resolution cell: an upsampled SAR image would carry it too fine.
     canvas = load_source(p["source"], size, data_dir, upsample=not (spec.family == "speckle" and p["source"] == "sar"))
     ch, cw = canvas.shape

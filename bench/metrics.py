@@ -43,6 +43,9 @@ def judge(case, result=None, error: Optional[BaseException] = None) -> dict:
     e = case.errors(result.model)
     rmse = float(np.sqrt(np.mean(e ** 2)))
     right = bool(rmse <= case.tolerance_px)
+    if "smooth" in case.info:  # the nonrigid family: the error where the field is smooth at the window scale
+        smooth = np.asarray(case.info["smooth"], bool)
+        row["rmse_cp_smooth"] = float(np.sqrt(np.mean(e[smooth] ** 2))) if smooth.any() else None
     row.update(rmse_cp=rmse, max_cp=float(e.max()), success=right, rmse_px=result.stats["rmse_px"],
                rms_loo_px=result.stats["rms_loo_px"], n_gcps=result.stats["n_gcps"],
                false_verified=result.verified and not right, false_flagged=right and not result.verified)

@@ -38,7 +38,8 @@ def cmd_register(args) -> int:
                               ransac_threshold_px=args.ransac_threshold, seed=args.seed, refine=args.refine,
                               max_gcps=args.max_gcps, target_georef=args.target_georef,
                               target_band=args.target_band, reference_band=args.reference_band,
-                              tolerance_px=args.tolerance, auto_budget_s=args.auto_budget)
+                              tolerance_px=args.tolerance, auto_budget_s=args.auto_budget, local=args.local,
+                              local_window_px=args.local_window, local_spacing_px=args.local_spacing)
     output = OutputOptions(resampling=args.resampling, grid=args.grid, resolution=args.resolution, crs=args.crs,
                            format=args.format, creation_options=tuple(args.co), fill=args.fill, nodata=args.nodata)
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format)
@@ -77,6 +78,33 @@ def _params(params: dict) -> str:
 
 def _fmt(v) -> str:
     return "n/a" if v is None else f"{v:.3f}"
+
+
+def cmd_batch(args) -> int:
+    from ..core import OutputOptions, RegisterOptions
+    from ..core.batch import read_jobs, run_batch
+    from ..core.batch.table import write_results
+    from ..core.batch.task import BatchSettings
+
+    options = RegisterOptions(model=args.model, tolerance_px=args.tolerance, local=args.local,
+                              auto_budget_s=args.auto_budget)
+    output = OutputOptions(resampling=args.resampling, format=args.format)
+    jobs = read_jobs(args.source, args.out, args.reference)
+    settings = BatchSettings(method=args.method, options=options, output=output,
+                             accept_unverified=args.accept_unverified)
+    result = run_batch(jobs, settings, scheduler=args.scheduler, workers=args.workers,
+                       progress=ProgressBar(not args.quiet))
+    os.makedirs(args.out, exist_ok=True)
+    tables = write_results(args.out, result.records)
+    for r in result.records:
+        if r["status"] != "verified":
+            print(f"{r['status']:10s} {r['name']}: {r['message']}")
+    for note in result.notes:
+        print(f"note: {note}")
+    print(result.summary())
+    print(f"results  {tables['gpkg']}\n         {tables['csv']}")
+    counts = result.counts()
+    return EXIT_ERROR if counts["failed"] else (EXIT_UNVERIFIED if counts["unverified"] else EXIT_OK)
 
 
 def cmd_map_points(args) -> int:
@@ -267,8 +295,40 @@ def build_parser() -> argparse.ArgumentParser:
                    help="write the outputs even when the result is not verified (the verdict is in every output)")
     r.add_argument("--auto-budget", type=float, default=d.auto_budget_s,
                    help=f"seconds after which 'auto' starts no further method (default {d.auto_budget_s:g})")
+    r.add_argument("--local", action="store_true",
+                   help="after the global model, correct local (non-rigid) misalignment from shifts measured on a "
+                        "dense grid of windows; the model becomes a thin plate spline through the grid")
+    r.add_argument("--local-window", type=int, default=d.local_window_px,
+                   help=f"local correction window side, reference px (default {d.local_window_px})")
+    r.add_argument("--local-spacing", type=float, default=d.local_spacing_px,
+                   help="local correction grid spacing, reference px (default 0: automatic)")
     r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=cmd_register)
+
+    bt = sub.add_parser("batch", help="register many targets, in parallel on Dask (a local cluster or a scheduler)",
+                        description="Register every pair of SOURCE: a job list (.csv or .gpkg with columns target, "
+                                    "reference, method, model, output) or a folder/glob of targets registered onto "
+                                    "--reference. Each pair writes into its own folder under --out; a rerun skips "
+                                    "pairs already done. Exit code: 0 all verified, 3 some not verified, 1 some "
+                                    "failed.")
+    bt.add_argument("source", help="job list (.csv/.gpkg), a folder of targets, or a glob pattern (quote it)")
+    bt.add_argument("--out", required=True, help="output folder: one sub-folder per pair, batch.gpkg and batch.csv")
+    bt.add_argument("--reference", default=None, help="the reference for targets from a folder or pattern (a raster "
+                                                      "or a VRT mosaic)")
+    bt.add_argument("--method", default="auto", help="matching method of every pair (a job's own overrides it)")
+    bt.add_argument("--model", default=None, help=f"transform model: {', '.join(MODEL.values)}")
+    bt.add_argument("--local", action="store_true", help="local (non-rigid) correction after the global model")
+    bt.add_argument("--tolerance", type=float, default=d.tolerance_px, help="accuracy asked for, reference px")
+    bt.add_argument("--accept-unverified", action="store_true", help="write the outputs of unverified pairs too")
+    bt.add_argument("--auto-budget", type=float, default=d.auto_budget_s, help="seconds per pair for 'auto'")
+    bt.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values, help="resampling of the output")
+    bt.add_argument("--format", default=o.format, choices=FORMAT.values, help="warped raster format")
+    bt.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
+                    help="an existing Dask scheduler (workers need Hamta installed and access to the paths); "
+                         "default: a local cluster")
+    bt.add_argument("--workers", type=int, default=None, help="workers of the local cluster (default: CPU count)")
+    bt.add_argument("--quiet", action="store_true", help="no progress bar")
+    bt.set_defaults(func=cmd_batch)
 
     m = sub.add_parser("map-points", help="map target pixels through the model stored in a report.json")
     m.add_argument("report", help="a report.json written by 'hamta register'")

@@ -149,6 +149,12 @@ class RegisterOptions:
         check bounds its error within this (see :mod:`hamta.core.verify`).
     auto_budget_s : float
         With method 'auto', no further method starts once this many seconds are spent.
+    local : bool
+        After the global model, correct local (non-rigid) misalignment from shifts measured on a
+        dense grid of windows (:mod:`hamta.core.local`); the model becomes a thin plate spline.
+    local_window_px, local_spacing_px : int, float
+        The local correction's window side and grid spacing (reference px; spacing 0 = automatic,
+        about 2000 windows over the overlap).
     """
 
     model: Optional[str] = None
@@ -164,6 +170,9 @@ class RegisterOptions:
     reference_band: Optional[int] = None
     tolerance_px: float = 3.0
     auto_budget_s: float = 120.0
+    local: bool = False
+    local_window_px: int = 96
+    local_spacing_px: float = 0.0
 
     def __post_init__(self):
         if self.model is not None:
@@ -182,6 +191,8 @@ class RegisterOptions:
             _number("ransac_threshold_px", self.ransac_threshold_px, positive=True)
         _number("tolerance_px", self.tolerance_px, positive=True)
         _number("auto_budget_s", self.auto_budget_s, positive=False)
+        _whole("local_window_px", self.local_window_px, 16)
+        _number("local_spacing_px", self.local_spacing_px, positive=False)
 
 
 def _whole(name: str, value, minimum: int) -> None:

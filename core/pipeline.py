@@ -19,6 +19,7 @@ from .estimation.framed import CrsFrame
 from .estimation.robust import RobustRules, final_fit, robust_linear
 from .io.raster import RasterInfo, open_raster, resolve_bands
 from .io.working import Plan, WorkingImage, prepare_working_images
+from .local import LocalParams, local_correction
 from .methods import get_method
 from .options import RegisterOptions, resolve_options
 from .progress import Clock, Monitor
@@ -29,7 +30,7 @@ from .verify import VerifyParams, verify
 
 
 def register(target, reference, method: str = AUTO, params=None, options: RegisterOptions = RegisterOptions(),
-             progress=None, is_canceled=None) -> RegistrationResult:
+             progress=None, is_canceled=None, map_chunks=None) -> RegistrationResult:
     """Register the ``target`` raster onto the ``reference`` raster, and verify the result.
 
     Parameters
@@ -46,6 +47,9 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
         Settings left open (None) take the method's defaults.
     progress : callable(fraction, message), optional
     is_canceled : callable() -> bool, optional
+    map_chunks : callable(fn, chunks) -> list, optional
+        Where the local correction's windows are measured (a Dask client's workers for big scenes,
+        see :mod:`hamta.core.batch`); here by default.
 
     Returns
     -------
@@ -64,8 +68,9 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
     if method == AUTO:
         if params:
             raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
-        return register_auto(lambda name, p, mon: match_and_fit(inputs, name, p, options, mon), options, rest)
-    return match_and_fit(inputs, method, params, options, rest)
+        return register_auto(lambda name, p, mon: match_and_fit(inputs, name, p, options, mon, map_chunks), options,
+                             rest)
+    return match_and_fit(inputs, method, params, options, rest, map_chunks)
 
 
 @dataclass(frozen=True, eq=False)
@@ -98,8 +103,8 @@ def read_inputs(target, reference, options: RegisterOptions, monitor: Monitor) -
     return Inputs(tgt_info, ref_info, bands[0], bands[1], tgt, ref, plan, clock.laps)
 
 
-def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions, monitor: Monitor
-                  ) -> RegistrationResult:
+def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions, monitor: Monitor,
+                  map_chunks=None) -> RegistrationResult:
     """Match the working images with ``method``, fit and refine the model, and verify it."""
     clock = Clock()
     spec = get_method(method)
@@ -120,8 +125,15 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
     monitor.report(0.85, "fitting")
     fit = final_fit(options.model, estimate, options.max_gcps, crs_frame(inputs.plan, inputs.target, inputs.reference))
     clock.lap("fit")
+    grid = None
+    if options.local:
+        fit, grid = local_correction(estimate, inputs.target, inputs.target_bands, inputs.reference,
+                                     inputs.reference_bands, LocalParams(options.local_window_px,
+                                                                         options.local_spacing_px),
+                                     spec.refinement.similarity, monitor.span(0.85, 0.93), map_chunks)
+        clock.lap("local")
     verification = verify(fit.model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands,
-                          VerifyParams(tolerance_px=options.tolerance_px), monitor.span(0.85, 1.0))
+                          VerifyParams(tolerance_px=options.tolerance_px), monitor.span(0.93, 1.0))
     clock.lap("verify")
     ref_info = inputs.reference
     to_map = (lambda xy: xy) if not ref_info.georeferenced else (lambda xy: pixel_to_map(ref_info.transform, xy))
@@ -131,7 +143,8 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
         method=spec.name, params=params_dict(params), options=dataclasses.asdict(options), model=fit.model,
         target=inputs.target, reference=ref_info, plan=inputs.plan, gcps=make_gcps(fit, to_map),
         stats=make_stats(matches, first.points, fit), timings=timings, notes=list(inputs.plan.notes) + notes,
-        diagnostics=dict(matches.diagnostics or {}), correspondences=first.points, verification=verification)
+        diagnostics=dict(matches.diagnostics or {}), correspondences=first.points, verification=verification,
+        local=grid)
 
 
 def crs_frame(plan: Plan, target, reference) -> Optional[CrsFrame]:

@@ -35,6 +35,10 @@ class Monitor:
             f = min(max(fraction, 0.0), 1.0)
             self._progress(self._start + f * (self._stop - self._start), message)
 
+    def canceled(self) -> bool:
+        """Whether the caller asked to stop (without raising)."""
+        return self._is_canceled is not None and bool(self._is_canceled())
+
     def check(self) -> None:
         """Raise :class:`RegistrationCanceled` when the caller asked to stop."""
         if self._is_canceled is not None and self._is_canceled():

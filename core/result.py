@@ -64,6 +64,7 @@ class RegistrationResult:
     verification: Optional[Verification] = None
     auto: Optional[dict] = None
     run_id: Optional[str] = None  # set when outputs are written: every file of one set carries it
+    local: Optional[object] = None  # the local correction's grid (hamta.core.local.LocalGrid), when asked for
 
     @property
     def verified(self) -> bool:
@@ -111,6 +112,7 @@ class RegistrationResult:
             "diagnostics": self.diagnostics,
             "quality": None if self.verification is None else self.verification.to_dict(),
             "auto": self.auto,
+            "local": None if self.local is None else self.local.summary(),
             "versions": versions(),
         }
 

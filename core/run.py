@@ -27,8 +27,10 @@ REGISTER_SHARE = 0.8
 
 def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str = AUTO, params=None,
         options: RegisterOptions = RegisterOptions(), output: OutputOptions = OutputOptions(),
-        accept_unverified: bool = False, progress=None, is_canceled=None) -> Tuple[RegistrationResult, Dict[str, str]]:
-    """Register ``target`` onto ``reference`` (see :func:`hamta.core.register`) and write ``paths``.
+        accept_unverified: bool = False, progress=None, is_canceled=None, map_chunks=None
+        ) -> Tuple[RegistrationResult, Dict[str, str]]:
+    """Register ``target`` onto ``reference`` (see :func:`hamta.core.register`, which also explains
+    ``map_chunks``) and write ``paths``.
 
     Returns
     -------
@@ -51,7 +53,7 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
     stage = monitor.span(0.0, share)
     result = register(target, reference, method=method, params=params, options=options,
-                      progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled)
+                      progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled, map_chunks=map_chunks)
     if share == 1.0:
         return result, {}
     stage = monitor.span(share, 1.0)

@@ -60,6 +60,9 @@ def register_settings(values: Mapping[str, Any]):
         target_band=values.get("TARGET_BAND") or None,
         reference_band=values.get("REFERENCE_BAND") or None,
         tolerance_px=float(values.get("TOLERANCE") or d.tolerance_px),
+        local=bool(values.get("LOCAL")),
+        local_window_px=int(values.get("LOCAL_WINDOW") or d.local_window_px),
+        local_spacing_px=float(values.get("LOCAL_SPACING") or 0.0),
     )
     gpkg, layer = vector_destination(values.get("GCP_LAYER") or "")
     paths = OutputPaths(raster=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,

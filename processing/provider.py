@@ -50,6 +50,7 @@ ALGORITHMS = (
     ("registerndsift", "Register SAR image onto SAR image (ND-SIFT + phase congruency)"),
     ("registersaroptical", "Register SAR image onto optical image"),
     ("registercrossmodal", "Register across modalities at any rotation and scale"),
+    ("batchregister", "Batch register"),
 )
 
 
@@ -182,6 +183,7 @@ class HamtaProvider(QgsProcessingProvider):
             self.unavailable_reason, self.unavailable = "", None
             try:  # the engine is imported here, once its requirements are known to import
                 from . import register_algorithm as algorithms
+                from .batch_algorithm import BatchRegisterAlgorithm
             except Exception as exc:  # never a traceback at plugin load: the algorithms say what failed
                 self.unavailable_reason, self.unavailable = "engine failed to load", engine_error_message(exc)
         if self.unavailable is not None:
@@ -191,7 +193,7 @@ class HamtaProvider(QgsProcessingProvider):
         for alg in (algorithms.RegisterAutoAlgorithm(), algorithms.RegisterSiftAlgorithm(),
                     algorithms.RegisterRilbpAlgorithm(), algorithms.RegisterSibrifAlgorithm(),
                     algorithms.RegisterNdsiftAlgorithm(), algorithms.RegisterSarOpticalAlgorithm(),
-                    algorithms.RegisterCrossModalAlgorithm()):
+                    algorithms.RegisterCrossModalAlgorithm(), BatchRegisterAlgorithm()):
             self.addAlgorithm(alg)
 
     def supportedOutputRasterLayerExtensions(self):

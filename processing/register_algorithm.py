@@ -55,6 +55,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
     OUTPUT, GCP_LAYER, GCP_POINTS, GCP_VRT, REPORT = "OUTPUT", "GCP_LAYER", "GCP_POINTS", "GCP_VRT", "REPORT"
     OUTPUT_HTML, OUTPUT_CRS, RESOLUTION, FORMAT = "OUTPUT_HTML", "OUTPUT_CRS", "RESOLUTION", "FORMAT"
     CREATION_OPTIONS, FILL, NODATA = "CREATION_OPTIONS", "FILL", "NODATA"
+    LOCAL, LOCAL_WINDOW, LOCAL_SPACING = "LOCAL", "LOCAL_WINDOW", "LOCAL_SPACING"
 
     def method(self):
         """The registered method this algorithm runs (None for 'auto', which chooses among them)."""
@@ -100,6 +101,15 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         self.addParameter(QgsProcessingParameterBoolean(
             self.KEEP_UNVERIFIED, self.tr("Keep unverified results (write the outputs even when the independent check "
                                           "does not confirm the registration)"), False))
+        self.addParameter(QgsProcessingParameterBoolean(
+            self.LOCAL, self.tr("Local (non-rigid) correction: measure shifts on a dense grid of windows after the "
+                                "global model and warp with a thin plate spline through them"), False))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.LOCAL_WINDOW, self.tr("Local correction window (reference pixels)"),
+            QgsProcessingParameterNumber.Integer, d.local_window_px, minValue=16)))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.LOCAL_SPACING, self.tr("Local correction grid spacing (reference pixels; 0: automatic)"),
+            QgsProcessingParameterNumber.Double, d.local_spacing_px, minValue=0.0)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.TOLERANCE, self.tr("Accuracy asked for (reference pixels): verified only within it"),
             QgsProcessingParameterNumber.Double, d.tolerance_px, minValue=0.01)))
@@ -219,6 +229,9 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             self.NODATA: self._optional_number(parameters, self.NODATA, context),
             self.TOLERANCE: self.parameterAsDouble(parameters, self.TOLERANCE, context),
             self.KEEP_UNVERIFIED: self.parameterAsBoolean(parameters, self.KEEP_UNVERIFIED, context),
+            self.LOCAL: self.parameterAsBoolean(parameters, self.LOCAL, context),
+            self.LOCAL_WINDOW: self.parameterAsInt(parameters, self.LOCAL_WINDOW, context),
+            self.LOCAL_SPACING: self.parameterAsDouble(parameters, self.LOCAL_SPACING, context),
         }
         for f in self._fields():
             key = method_parameter_name(f.name)

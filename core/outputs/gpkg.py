@@ -28,11 +28,16 @@ _FIELDS = [("gcp_id", "INTEGER"), ("enabled", "BOOLEAN"), ("target_x", "REAL"), 
 def _srs(result):
     """(srs_id, name, organization, code, definition) for the layer's CRS."""
     crs = None if result.pixel_mode else result.reference.crs
-    if crs is None:
+    return srs_entry(None if crs is None else crs.to_wkt())
+
+
+def srs_entry(crs_wkt):
+    """(srs_id, name, organization, code, definition) of a ``gpkg_spatial_ref_sys`` row for a CRS (WKT or None)."""
+    if crs_wkt is None:
         return -1, "Undefined cartesian SRS", "NONE", -1, "undefined"
     from pyproj import CRS
 
-    pcrs = CRS.from_user_input(crs.to_wkt())
+    pcrs = CRS.from_user_input(crs_wkt)
     definition = pcrs.to_wkt(version="WKT1_GDAL") or pcrs.to_wkt()
     epsg = pcrs.to_epsg()
     if epsg:
@@ -43,6 +48,18 @@ def _srs(result):
 def _point_blob(x: float, y: float, srs_id: int) -> bytes:
     header = b"GP" + struct.pack("<BBi", 0, 1, srs_id)  # version 0, little endian, no envelope
     return header + struct.pack("<BIdd", 1, 1, x, y)
+
+
+def _line_blob(xy: np.ndarray, srs_id: int) -> bytes:
+    header = b"GP" + struct.pack("<BBi", 0, 1, srs_id)
+    return header + struct.pack("<BII", 1, 2, len(xy)) + np.asarray(xy, "<f8").tobytes()
+
+
+SHIFT_LAYER_SUFFIX = "_local_shifts"
+SHIFT_EXAGGERATION = 20.0
+_SHIFT_FIELDS = [("window_id", "INTEGER"), ("kept", "BOOLEAN"), ("reference_x", "REAL"), ("reference_y", "REAL"),
+                 ("shift_x_px", "REAL"), ("shift_y_px", "REAL"), ("shift_px", "REAL"), ("used_x_px", "REAL"),
+                 ("used_y_px", "REAL"), ("score", "REAL")]
 
 
 def write_gcp_layer(path: str, result, layer: str = TABLE, base: Optional[str] = None) -> None:
@@ -58,7 +75,7 @@ def write_gcp_layer(path: str, result, layer: str = TABLE, base: Optional[str] =
         shutil.copyfile(base, path)
     con = sqlite3.connect(path)
     try:
-        _create_metadata(con)
+        create_metadata(con)
         _drop_layer(con, layer)
         if srs_id not in (-1, 0, 4326):
             con.execute("INSERT OR IGNORE INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)",
@@ -80,9 +97,37 @@ def write_gcp_layer(path: str, result, layer: str = TABLE, base: Optional[str] =
                     (layer, "features", layer, description, bounds[0], bounds[1], bounds[2], bounds[3], srs_id))
         con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (layer, "geom", "POINT", srs_id, 0, 0))
         write_default_style(con, layer)
+        _drop_layer(con, layer + SHIFT_LAYER_SUFFIX)
+        if result.local is not None:
+            _write_shifts(con, result, layer + SHIFT_LAYER_SUFFIX, srs_id)
         con.commit()
     finally:
         con.close()
+
+
+def _write_shifts(con, result, layer: str, srs_id: int) -> None:
+    """The local correction's windows as lines from each window's centre along its measured shift
+    (exaggerated :data:`SHIFT_EXAGGERATION` times), in the GCP layer's coordinates."""
+    grid = result.local
+    start = grid.reference_px
+    ends = start + SHIFT_EXAGGERATION * grid.shift_xy
+    a = destination_coordinates(result, start, result.reference_to_map(start))
+    b = destination_coordinates(result, ends, result.reference_to_map(ends))
+    cols = ", ".join(f'"{n}" {t}' for n, t in _SHIFT_FIELDS)
+    con.execute(f'CREATE TABLE "{layer}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom LINESTRING, {cols})')
+    rows = [(_line_blob(np.array([a[i], b[i]]), srs_id), i + 1, int(grid.kept[i]), float(start[i, 0]),
+             float(start[i, 1]), float(grid.shift_xy[i, 0]), float(grid.shift_xy[i, 1]),
+             float(np.hypot(*grid.shift_xy[i])), float(grid.smoothed_xy[i, 0]), float(grid.smoothed_xy[i, 1]),
+             float(grid.score[i])) for i in range(len(start))]
+    names = ",".join(["geom"] + [f'"{n}"' for n, _ in _SHIFT_FIELDS])
+    con.executemany(f'INSERT INTO "{layer}" ({names}) VALUES ({",".join("?" * (len(_SHIFT_FIELDS) + 1))})', rows)
+    both = np.vstack([a, b]) if len(a) else np.zeros((0, 2))
+    bounds = (both.min(axis=0).tolist() + both.max(axis=0).tolist()) if len(both) else [None] * 4
+    description = (f"Hamta local shifts (run {result.run_id}): window centre to centre + {SHIFT_EXAGGERATION:g} x "
+                   "the shift (global model minus the window's position, reference px); kept = used for the fit")
+    con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, max_x, "
+                "max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)", (layer, "features", layer, description, *bounds, srs_id))
+    con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (layer, "geom", "LINESTRING", srs_id, 0, 0))
 
 
 def is_geopackage(path: str) -> bool:
@@ -106,7 +151,7 @@ def _drop_layer(con, layer: str) -> None:
             con.execute(f'DELETE FROM "{registry}" WHERE lower(table_name) = lower(?)', (layer,))
 
 
-def _create_metadata(con) -> None:
+def create_metadata(con) -> None:
     con.execute(f"PRAGMA application_id = {_APPLICATION_ID}")
     con.execute(f"PRAGMA user_version = {_USER_VERSION}")
     if con.execute("SELECT 1 FROM sqlite_master WHERE name='gpkg_spatial_ref_sys'").fetchone():

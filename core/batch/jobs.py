@@ -1,0 +1,131 @@
+"""What a batch registers: one :class:`Job` per target/reference pair.
+
+Sources: a CSV file or a GeoPackage table with a ``target`` column and optional ``reference``,
+``method``, ``model`` and ``output`` columns (paths relative to the list's folder); or a folder or
+glob pattern of targets, all registered onto one reference (a raster or a VRT mosaic). A job
+without its own output folder gets ``<out>/<target name>`` (made unique when names repeat).
+"""
+from __future__ import annotations
+
+import csv
+import glob
+import hashlib
+import os
+import sqlite3
+from dataclasses import dataclass
+from typing import List, Optional
+
+from ..errors import InputError
+
+RASTER_EXTENSIONS = (".tif", ".tiff", ".vrt", ".jp2", ".img", ".jpg", ".jpeg", ".png", ".nc", ".hdf", ".h5")
+
+
+@dataclass(frozen=True)
+class Job:
+    """One pair: rasters, where its outputs go, and the method/model when they differ from the batch's."""
+
+    target: str
+    reference: str
+    out: str
+    method: Optional[str] = None
+    model: Optional[str] = None
+
+    @property
+    def key(self) -> str:
+        """A stable id of the job (same inputs, method and output folder: same key)."""
+        text = "|".join([self.target, self.reference, self.out, self.method or "", self.model or ""])
+        return hashlib.sha1(text.encode()).hexdigest()[:16]
+
+    @property
+    def name(self) -> str:
+        return os.path.basename(self.out)
+
+
+def read_jobs(source: str, out: str, reference: Optional[str] = None) -> List[Job]:
+    """The jobs of ``source`` (a .csv or .gpkg list, a folder, or a glob of targets with ``reference``)."""
+    if source.lower().endswith(".csv") and os.path.isfile(source):
+        rows = _csv_rows(source)
+    elif source.lower().endswith(".gpkg") and os.path.isfile(source):
+        rows = _gpkg_rows(source)
+    else:
+        if reference is None:
+            raise InputError(f"'{source}' is not a .csv or .gpkg job list; targets from a folder or pattern need a "
+                             "reference (--reference).")
+        rows = [{"target": t} for t in _targets(source)]
+        if not rows:
+            raise InputError(f"No raster matches '{source}'.")
+    base = os.path.dirname(os.path.abspath(source)) if os.path.isfile(source) else os.getcwd()
+    jobs, used = [], set()
+    for i, row in enumerate(rows, start=1):
+        target = _path(row.get("target"), base)
+        if not target:
+            raise InputError(f"Row {i} of the job list '{source}' has no target.")
+        ref = _path(row.get("reference"), base) or (os.path.abspath(reference) if reference else None)
+        if not ref:
+            raise InputError(f"Row {i} of the job list '{source}' has no reference, and no --reference was given.")
+        folder = _path(row.get("output"), base) or _unique(os.path.join(os.path.abspath(out), _stem(target)), used)
+        used.add(folder)
+        jobs.append(Job(target, ref, folder, (row.get("method") or "").strip() or None,
+                        (row.get("model") or "").strip() or None))
+    return jobs
+
+
+def jobs_for_targets(targets: List[str], reference: str, out: str) -> List[Job]:
+    """One job per target onto ``reference``, each into ``<out>/<target name>`` (unique)."""
+    jobs, used = [], set()
+    for target in targets:
+        folder = _unique(os.path.join(os.path.abspath(out), _stem(target)), used)
+        used.add(folder)
+        jobs.append(Job(os.path.abspath(target), os.path.abspath(reference), folder))
+    return jobs
+
+
+def _csv_rows(path: str) -> list:
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as f:
+            rows = [{(k or "").strip().lower(): (v or "").strip() for k, v in r.items()} for r in csv.DictReader(f)]
+    except (OSError, UnicodeDecodeError, csv.Error) as exc:
+        raise InputError(f"The job list '{path}' could not be read as CSV ({exc}).") from None
+    if rows and "target" not in rows[0]:
+        raise InputError(f"The job list '{path}' has no 'target' column (columns: target, reference, method, model, "
+                         "output).")
+    return rows
+
+
+def _gpkg_rows(path: str) -> list:
+    try:
+        with sqlite3.connect(f"file:{path}?mode=ro", uri=True) as con:
+            tables = [r[0] for r in con.execute("SELECT table_name FROM gpkg_contents")]
+            for table in tables:
+                cols = [r[1].lower() for r in con.execute(f'PRAGMA table_info("{table}")')]
+                if "target" in cols:
+                    cur = con.execute(f'SELECT * FROM "{table}"')
+                    names = [d[0].lower() for d in cur.description]
+                    return [{k: v if isinstance(v, str) else None for k, v in zip(names, r)} for r in cur]
+    except sqlite3.Error as exc:
+        raise InputError(f"The job list '{path}' is not a readable GeoPackage ({exc}).") from None
+    raise InputError(f"No table of the GeoPackage '{path}' has a 'target' column.")
+
+
+def _targets(pattern: str) -> List[str]:
+    if os.path.isdir(pattern):
+        names = sorted(os.path.join(pattern, n) for n in os.listdir(pattern))
+    else:
+        names = sorted(glob.glob(pattern, recursive=True))
+    return [os.path.abspath(n) for n in names if os.path.isfile(n) and n.lower().endswith(RASTER_EXTENSIONS)]
+
+
+def _path(value, base: str) -> Optional[str]:
+    value = (value or "").strip() if isinstance(value, str) else None
+    return os.path.abspath(os.path.join(base, value)) if value else None
+
+
+def _stem(path: str) -> str:
+    return os.path.splitext(os.path.basename(path))[0] or "target"
+
+
+def _unique(folder: str, used: set) -> str:
+    candidate, n = folder, 2
+    while candidate in used:
+        candidate, n = f"{folder}-{n}", n + 1
+    return candidate

@@ -1,0 +1,105 @@
+"""A batch's results table: a GeoPackage layer of the targets' footprints, and the same as CSV.
+
+One feature per pair: its footprint (the target's outline mapped through the registration, in
+the reference CRS, or WGS 84 when the references' CRSs differ; no geometry for failed pairs),
+status, verdict, error bound, self-reported RMSE, GCP count, method, time, message and output
+paths. Written whole or not at all, through the same staging as every output.
+"""
+from __future__ import annotations
+
+import csv
+import os
+import sqlite3
+import struct
+from typing import List, Optional
+
+import numpy as np
+
+from ..outputs.atomic import OutputSet
+from ..outputs.gpkg import create_metadata, srs_entry
+
+LAYER = "pairs"
+FIELDS = [("name", "TEXT"), ("status", "TEXT"), ("verdict", "TEXT"), ("method", "TEXT"), ("method_used", "TEXT"),
+          ("error_bound_px", "REAL"), ("rmse_px", "REAL"), ("n_gcps", "INTEGER"), ("time_s", "REAL"),
+          ("resumed", "BOOLEAN"), ("message", "TEXT"), ("target", "TEXT"), ("reference", "TEXT"), ("out", "TEXT"),
+          ("raster", "TEXT"), ("report", "TEXT")]
+
+
+def write_results(folder: str, records: List[dict]) -> dict:
+    """Write ``batch.gpkg`` and ``batch.csv`` into ``folder``; returns their paths."""
+    paths = {"gpkg": os.path.join(folder, "batch.gpkg"), "csv": os.path.join(folder, "batch.csv")}
+    with OutputSet() as out:
+        _write_gpkg(out.temp_for(paths["gpkg"]), records)
+        _write_csv(out.temp_for(paths["csv"]), records)
+    return paths
+
+
+def _row(r: dict) -> list:
+    outputs = r.get("outputs") or {}
+    return [r["name"], r["status"], r.get("verdict"), r["method"], r.get("method_used"), r.get("error_bound_px"),
+            r.get("rmse_px"), r.get("n_gcps"), r["time_s"], int(bool(r.get("resumed"))), r.get("message") or "",
+            r["target"], r["reference"], r["out"], outputs.get("raster"), outputs.get("report")]
+
+
+def _write_csv(path: str, records: List[dict]) -> None:
+    with open(path, "w", newline="", encoding="utf-8") as f:
+        writer = csv.writer(f)
+        writer.writerow([n for n, _ in FIELDS])
+        writer.writerows(_row(r) for r in records)
+
+
+def _write_gpkg(path: str, records: List[dict]) -> None:
+    crs_wkt, footprints = _footprints(records)
+    srs_id, name, org, code, definition = srs_entry(crs_wkt)
+    con = sqlite3.connect(path)
+    try:
+        create_metadata(con)
+        if srs_id not in (-1, 0, 4326):
+            con.execute("INSERT OR IGNORE INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)",
+                        (name, srs_id, org, code, definition, ""))
+        cols = ", ".join(f'"{n}" {t}' for n, t in FIELDS)
+        con.execute(f'CREATE TABLE "{LAYER}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom POLYGON, {cols})')
+        marks = ",".join("?" * (len(FIELDS) + 1))
+        names = ",".join(["geom"] + [f'"{n}"' for n, _ in FIELDS])
+        con.executemany(f'INSERT INTO "{LAYER}" ({names}) VALUES ({marks})',
+                        [(_polygon_blob(f, srs_id) if f is not None else None, *_row(r))
+                         for r, f in zip(records, footprints)])
+        every = np.vstack([f for f in footprints if f is not None]) if any(f is not None for f in footprints) else None
+        bounds = [None] * 4 if every is None else every.min(axis=0).tolist() + every.max(axis=0).tolist()
+        con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, max_x, "
+                    "max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)",
+                    (LAYER, "features", LAYER, "Hamta batch: one footprint per registered target", *bounds, srs_id))
+        con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (LAYER, "geom", "POLYGON", srs_id, 0, 0))
+        con.commit()
+    finally:
+        con.close()
+
+
+def _footprints(records: List[dict]):
+    """(CRS WKT of the layer or None, footprint array per record or None)."""
+    crss = {r.get("crs") for r in records if r.get("footprint") and not r.get("pixel_mode")}
+    if len(crss) <= 1:
+        crs = next(iter(crss), None)
+        return crs, [np.asarray(r["footprint"], float) if r.get("footprint") and not r.get("pixel_mode")
+                     and r.get("crs") == crs else None for r in records]
+    from pyproj import CRS, Transformer
+
+    out = []
+    for r in records:
+        if not r.get("footprint") or r.get("pixel_mode"):
+            out.append(None)
+            continue
+        to_wgs84 = Transformer.from_crs(CRS.from_user_input(r["crs"]), CRS.from_epsg(4326), always_xy=True)
+        xy = np.asarray(r["footprint"], float)
+        lon, lat = to_wgs84.transform(xy[:, 0], xy[:, 1])
+        out.append(np.column_stack([lon, lat]))
+    return CRS.from_epsg(4326).to_wkt(), out
+
+
+def _polygon_blob(ring: np.ndarray, srs_id: int) -> Optional[bytes]:
+    ring = np.asarray(ring, float)
+    if len(ring) < 3 or not np.isfinite(ring).all():
+        return None
+    ring = np.vstack([ring, ring[:1]])
+    header = b"GP" + struct.pack("<BBi", 0, 1, srs_id)
+    return header + struct.pack("<BIII", 1, 3, 1, len(ring)) + ring.astype("<f8").tobytes()

@@ -1,0 +1,131 @@
+"""The function every pair of a batch runs as, on whichever worker Dask gives it.
+
+:func:`register_job` registers one :class:`~hamta.core.batch.jobs.Job` with :func:`hamta.core.run.run`
+into the job's own output folder (published whole or not at all, so a worker killed mid-write
+leaves nothing half-written) and returns a plain record (JSON-able) of what happened; it never
+raises for a pair that fails, so one bad pair never stops a batch. A job whose folder already holds
+a finished set for the same inputs is not run again (:func:`finished_record`).
+"""
+from __future__ import annotations
+
+import json
+import os
+import time
+from dataclasses import dataclass, replace
+from typing import Optional
+
+import numpy as np
+
+from ..errors import HamtaError, UnverifiedResult
+from ..options import OutputOptions, RegisterOptions
+from .jobs import Job
+
+
+@dataclass(frozen=True)
+class BatchSettings:
+    """What every pair shares: the method (a job's own overrides it), options and output options,
+    whether unverified results are written, and whether a pair's local correction may spread its
+    windows over the cluster's workers."""
+
+    method: str = "auto"
+    options: RegisterOptions = RegisterOptions()
+    output: OutputOptions = OutputOptions()
+    accept_unverified: bool = False
+    spread_local: bool = True
+
+
+def register_job(job: Job, settings: BatchSettings) -> dict:
+    """Register ``job``; return its record (status 'verified', 'unverified' or 'failed')."""
+    from ..outputs import OutputPaths
+    from ..run import run
+
+    done = finished_record(job, settings)
+    if done is not None:
+        return done
+    options = settings.options if job.model is None else replace(settings.options, model=job.model)
+    method = job.method or settings.method
+    t0 = time.perf_counter()
+    try:
+        paths = OutputPaths.in_folder(job.out, raster_format=settings.output.format)
+        run(job.target, job.reference, paths, method=method, options=options, output=settings.output,
+            accept_unverified=settings.accept_unverified, map_chunks=_cluster_map() if settings.spread_local else None)
+    except UnverifiedResult:
+        pass  # its report says why; the record reads it
+    except (HamtaError, ValueError, ArithmeticError, MemoryError) as exc:
+        return failed_record(job, method, time.perf_counter() - t0, str(exc).strip().splitlines()[0])
+    return from_report(job, method, time.perf_counter() - t0)
+
+
+def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
+    """The record of an earlier run of ``job`` whose outputs are all there, else None."""
+    report = os.path.join(job.out, "report.json")
+    if not (os.path.isfile(os.path.join(job.out, ".hamta-manifest.json")) and os.path.isfile(report)):
+        return None
+    try:
+        with open(report, encoding="utf-8") as f:
+            rep = json.load(f)
+        same = (os.path.abspath(rep["target"]["path"]) == job.target
+                and os.path.abspath(rep["reference"]["path"]) == job.reference)
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+    if not same:
+        return None
+    record = from_report(job, job.method or settings.method, rep.get("timings_s", {}).get("total", 0.0))
+    record["resumed"] = True
+    return record
+
+
+def from_report(job: Job, method: str, seconds: float) -> dict:
+    """A job's record from the ``report.json`` its run wrote."""
+    from ..mapping import map_points_from_report
+
+    path = os.path.join(job.out, "report.json")
+    with open(path, encoding="utf-8") as f:
+        rep = json.load(f)
+    quality = rep.get("quality") or {}
+    verdict = quality.get("verdict")
+    w, h = rep["target"]["width"], rep["target"]["height"]
+    s = np.linspace(0.0, 1.0, 9)
+    outline = np.concatenate([np.column_stack([s * w, 0 * s]), np.column_stack([0 * s + w, s * h]),
+                              np.column_stack([w - s * w, 0 * s + h]), np.column_stack([0 * s, h - s * h])])
+    try:
+        footprint = [p["map"] for p in map_points_from_report(path, outline)]
+    except HamtaError:
+        footprint = None
+    status = "verified" if verdict == "verified" else "unverified"
+    stats = rep.get("stats", {})
+    return _record(job, method, status, seconds, method_used=rep.get("method"), verdict=verdict,
+                   error_bound_px=quality.get("error_bound_px"), rmse_px=stats.get("rmse_px"),
+                   n_gcps=stats.get("n_gcps"), outputs=rep.get("outputs") or {"report": path}, footprint=footprint,
+                   crs=rep["reference"].get("crs"), pixel_mode=bool(rep["reference"].get("pixel_mode")),
+                   message="; ".join(quality.get("reasons") or []))
+
+
+def failed_record(job: Job, method: str, seconds: float, message: str) -> dict:
+    """The record of a pair that produced no registration."""
+    return _record(job, method, "failed", seconds, message=message)
+
+
+def _record(job: Job, method: str, status: str, seconds: float, **fields) -> dict:
+    record = {"key": job.key, "name": job.name, "target": job.target, "reference": job.reference, "out": job.out,
+              "method": method, "status": status, "time_s": round(float(seconds), 3), "method_used": None,
+              "verdict": None, "error_bound_px": None, "rmse_px": None, "n_gcps": None, "outputs": {},
+              "footprint": None, "crs": None, "pixel_mode": False, "message": "", "resumed": False}
+    record.update(fields)
+    return record
+
+
+def _cluster_map():
+    """Inside a Dask worker: spread a pair's local-correction windows over the cluster (the task
+    leaves its worker slot while it waits); elsewhere None (the windows are measured in place)."""
+    try:
+        from distributed import get_worker, worker_client
+        get_worker()
+    except (ImportError, ValueError):
+        return None
+
+    def map_chunks(fn, chunks):
+        with worker_client() as client:
+            return client.gather(client.map(fn, chunks, pure=False))
+
+    return map_chunks

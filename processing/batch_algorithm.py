@@ -1,0 +1,155 @@
+"""Processing "Batch register": many targets in one run, on Dask (a thin adapter over hamta.core.batch)."""
+from __future__ import annotations
+
+from qgis.core import (
+    QgsProcessing,
+    QgsProcessingAlgorithm,
+    QgsProcessingException,
+    QgsProcessingOutputNumber,
+    QgsProcessingOutputVectorLayer,
+    QgsProcessingParameterBoolean,
+    QgsProcessingParameterDefinition,
+    QgsProcessingParameterEnum,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterFolderDestination,
+    QgsProcessingParameterMultipleLayers,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterRasterLayer,
+    QgsProcessingParameterString,
+)
+from qgis.PyQt.QtCore import QCoreApplication
+
+from ..core import OutputOptions, RegisterOptions
+from ..core.auto import AUTO
+from ..core.batch import read_jobs, run_batch
+from ..core.batch.jobs import jobs_for_targets
+from ..core.batch.table import write_results
+from ..core.batch.task import BatchSettings
+from ..core.errors import HamtaError, RegistrationCanceled
+from ..core.methods import all_methods
+from ..core.options import MODEL
+
+_CONTEXT = "BatchAlgorithm"
+
+
+def _advanced(p):
+    p.setFlags(p.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
+    return p
+
+
+def batch_methods():
+    """The methods offered, in menu order: auto, then the product methods, then the rest."""
+    order = {"method": 0, "baseline": 1, "faithful": 2}
+    return [AUTO] + [m.name for m in sorted(all_methods().values(), key=lambda m: (order.get(m.kind, 3), m.name))]
+
+
+class BatchRegisterAlgorithm(QgsProcessingAlgorithm):
+    JOBS, TARGETS, REFERENCE, OUTPUT_FOLDER = "JOBS", "TARGETS", "REFERENCE", "OUTPUT_FOLDER"
+    METHOD, MODEL, LOCAL, TOLERANCE, KEEP_UNVERIFIED = "METHOD", "MODEL", "LOCAL", "TOLERANCE", "KEEP_UNVERIFIED"
+    SCHEDULER, WORKERS, RESULTS = "SCHEDULER", "WORKERS", "RESULTS"
+
+    def tr(self, text):
+        return QCoreApplication.translate(_CONTEXT, text)
+
+    def createInstance(self):
+        return BatchRegisterAlgorithm()
+
+    def name(self):
+        return "batchregister"
+
+    def displayName(self):
+        return self.tr("Batch register")
+
+    def group(self):
+        return self.tr("Registration")
+
+    def groupId(self):
+        return "registration"
+
+    def shortHelpString(self):
+        return self.tr(
+            "Registers many targets in one run: the rasters chosen as targets onto one reference, or every row of a "
+            "job list (CSV or GeoPackage with columns target, reference, method, model, output). Pairs run in "
+            "parallel on Dask (a local cluster inside QGIS, or an existing scheduler given as tcp://host:port). "
+            "Each pair writes its outputs into its own folder under the output folder; a pair that fails is "
+            "recorded and the others go on; running again skips the pairs already done. The result layer holds "
+            "every target's footprint with its verdict, error figures, method, time and output paths.\n\n"
+            "QGIS's own batch mode over the single-pair algorithms works too.")
+
+    def initAlgorithm(self, config=None):
+        self.addParameter(QgsProcessingParameterMultipleLayers(
+            self.TARGETS, self.tr("Target rasters"), QgsProcessing.TypeRaster, optional=True))
+        self.addParameter(QgsProcessingParameterRasterLayer(
+            self.REFERENCE, self.tr("Reference raster (for the targets above)"), optional=True))
+        self.addParameter(QgsProcessingParameterFile(
+            self.JOBS, self.tr("Job list instead (CSV or GeoPackage: target, reference, method, model, output)"),
+            optional=True, fileFilter=self.tr("Job lists (*.csv *.gpkg)")))
+        self.addParameter(QgsProcessingParameterEnum(self.METHOD, self.tr("Method"), options=batch_methods(),
+                                                     defaultValue=0))
+        self.addParameter(QgsProcessingParameterEnum(
+            self.MODEL, self.tr("Transformation"), options=[self.tr(MODEL.labels[v]) for v in MODEL.values],
+            defaultValue=MODEL.index("affine")))
+        self.addParameter(QgsProcessingParameterBoolean(self.LOCAL, self.tr("Local (non-rigid) correction"), False))
+        self.addParameter(QgsProcessingParameterBoolean(
+            self.KEEP_UNVERIFIED, self.tr("Keep unverified results"), False))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.TOLERANCE, self.tr("Accuracy asked for (reference pixels)"), QgsProcessingParameterNumber.Double,
+            RegisterOptions().tolerance_px, minValue=0.01)))
+        self.addParameter(_advanced(QgsProcessingParameterString(
+            self.SCHEDULER, self.tr("Dask scheduler (tcp://host:port; empty: a local cluster)"), "", optional=True)))
+        self.addParameter(_advanced(QgsProcessingParameterNumber(
+            self.WORKERS, self.tr("Workers of the local cluster (0: one per CPU)"),
+            QgsProcessingParameterNumber.Integer, 0, minValue=0)))
+        self.addParameter(QgsProcessingParameterFolderDestination(self.OUTPUT_FOLDER, self.tr("Output folder")))
+        self.addOutput(QgsProcessingOutputVectorLayer(self.RESULTS, self.tr("Batch results (footprints)")))
+        for name, label in (("VERIFIED", "Pairs verified"), ("UNVERIFIED", "Pairs not verified"),
+                            ("FAILED", "Pairs failed")):
+            self.addOutput(QgsProcessingOutputNumber(name, self.tr(label)))
+
+    def _jobs(self, parameters, context, out):
+        jobs_file = self.parameterAsFile(parameters, self.JOBS, context)
+        if jobs_file:
+            return read_jobs(jobs_file, out)
+        layers = self.parameterAsLayerList(parameters, self.TARGETS, context)
+        reference = self.parameterAsRasterLayer(parameters, self.REFERENCE, context)
+        if not layers or reference is None:
+            raise QgsProcessingException(self.tr("Choose target rasters and a reference raster, or a job list."))
+        return jobs_for_targets([layer.source() for layer in layers], reference.source(), out)
+
+    def processAlgorithm(self, parameters, context, feedback):
+        out = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
+        options = RegisterOptions(model=MODEL.at(self.parameterAsEnum(parameters, self.MODEL, context)),
+                                  local=self.parameterAsBoolean(parameters, self.LOCAL, context),
+                                  tolerance_px=self.parameterAsDouble(parameters, self.TOLERANCE, context))
+        settings = BatchSettings(method=batch_methods()[self.parameterAsEnum(parameters, self.METHOD, context)],
+                                 options=options, output=OutputOptions(),
+                                 accept_unverified=self.parameterAsBoolean(parameters, self.KEEP_UNVERIFIED, context))
+        scheduler = self.parameterAsString(parameters, self.SCHEDULER, context).strip() or None
+        workers = self.parameterAsInt(parameters, self.WORKERS, context) or None
+
+        def progress(fraction, message):
+            feedback.setProgress(100.0 * fraction)
+            if message:
+                feedback.setProgressText(message)
+
+        try:
+            jobs = self._jobs(parameters, context, out)
+            result = run_batch(jobs, settings, scheduler=scheduler, workers=workers, processes=False,
+                               progress=progress, is_canceled=feedback.isCanceled)
+            tables = write_results(out, result.records)
+        except RegistrationCanceled as exc:
+            raise QgsProcessingException(str(exc)) from None
+        except HamtaError as exc:
+            raise QgsProcessingException(str(exc)) from None
+        except Exception as exc:  # a bug or a cluster problem: a clear message, never a raw traceback
+            raise QgsProcessingException(self.tr("Batch stopped on an unexpected error ({}: {}).").format(
+                type(exc).__name__, exc)) from None
+        for r in result.records:
+            if r["status"] != "verified":
+                feedback.reportError(f"{r['name']}: {r['status']} - {r['message']}")
+        for note in result.notes:
+            feedback.pushInfo(note)
+        feedback.pushInfo(result.summary())
+        counts = result.counts()
+        return {self.OUTPUT_FOLDER: out, self.RESULTS: tables["gpkg"], "VERIFIED": counts["verified"],
+                "UNVERIFIED": counts["unverified"], "FAILED": counts["failed"]}
