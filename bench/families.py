@@ -23,14 +23,14 @@ from ..core.coords import apply_matrix, compose
 from ..core.preprocess.sar import lee_filter
 from . import multimodal_set, trust
 from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
-from .nonrigid import nonrigid_case
+from .nonrigid import Field, nonrigid_case
 from .synthetic import make_landscape
 
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
-            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid")
+            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch")
 # The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
-# output writer against gdalwarp, no registration cases of its own) and 'nonrigid' (local distortion, for the
-# local correction) run on request.
+# output writer against gdalwarp, no registration cases of its own), 'nonrigid' (local distortion, for the
+# local correction) and 'batch' (throughput on a Dask cluster, no cases of its own) run on request.
 DEFAULT_FAMILIES = FAMILIES[:10]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
@@ -276,7 +276,7 @@ _SPECS = {"crops": _crops, "should-fail": _should_fail,
           **{f: _multimodal_set(f) for f in multimodal_set.CATEGORIES},
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
-          "writing": lambda quick: [], "nonrigid": _nonrigid}
+          "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: []}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -354,35 +354,46 @@ def _overlap_case(folder, name, canvas, fraction, rng, info):
 
 
 def _large_case(folder: str, name: str, size: int, shift) -> Case:
-    """A ``size`` x ``size`` uint16 reference (10 m, UTM 39N) and a georeferenced target covering its
-    central 73 %, whose geotransform is off by ``shift`` target pixels: the memory-bound case."""
+    """A Sentinel-2-sized pair: a ``size`` x ``size`` uint16 reference (10 m, UTM 39N) and an 8000 x 8000
+    uint16 target inside it whose geotransform is off by ``shift`` target pixels and whose content
+    is displaced by a smooth terrain-like field of up to 3 px (hills of 150-300 px): the memory- and
+    time-bound case, for the global model and the local correction."""
     import rasterio
     from rasterio.windows import Window
 
     os.makedirs(folder, exist_ok=True)
     reference, target = os.path.join(folder, f"{name}_reference.tif"), os.path.join(folder, f"{name}_target.tif")
+    tsize = min(8000, size - size // 8)
+    off = (size - tsize) // 2
+    field = Field((size, size), np.random.default_rng(11), 3.0, 0, hills=max(6, 6 * size * size // 1_000_000))
+    truth = lambda p: np.asarray(p, float) + off + field(np.asarray(p, float) + off)  # noqa: E731
+    gx, gy = np.meshgrid(np.linspace(50, tsize - 50, 25), np.linspace(50, tsize - 50, 25))
+    case = Case(name, target, reference, truth, np.column_stack([gx.ravel(), gy.ravel()]),
+                info={"family": "large", "size": size, "target_size": tsize, "georeferencing_error_px": list(shift),
+                      "field_amplitude_px": 3.0})
+    if os.path.exists(target) and os.path.exists(reference):
+        return case
     base = make_landscape((size // 4, size // 4), seed=3).astype(np.float32)
     grey = 0.299 * base[0] + 0.587 * base[1] + 0.114 * base[2]
+    rng = np.random.default_rng(5)
+    full = np.clip(cv2.resize(grey, (size, size), interpolation=cv2.INTER_CUBIC) * 40
+                   + rng.normal(0, 80, (size, size)).astype(np.float32), 1, 65535).astype(np.float32)
     tr = Affine(10.0, 0, 500000.0, 0, -10.0, 4000000.0)
     prof = dict(driver="GTiff", width=size, height=size, count=1, dtype="uint16", crs="EPSG:32639", transform=tr,
                 tiled=True, blockxsize=512, blockysize=512, compress="deflate")
-    off, tsize = size // 8, size - size // 4
-    rng = np.random.default_rng(5)
+    with rasterio.open(reference, "w", **prof) as ref:
+        for r0 in range(0, size, 1024):
+            ref.write(full[r0:r0 + 1024].astype("uint16"), 1, window=Window(0, r0, size, min(1024, size - r0)))
     tgt_prof = dict(prof, width=tsize, height=tsize,
                     transform=compose(tr, Affine.translation(off + shift[0], off + shift[1])))
-    with rasterio.open(reference, "w", **prof) as ref, rasterio.open(target, "w", **tgt_prof) as tgt:
-        full = cv2.resize(grey, (size, size), interpolation=cv2.INTER_CUBIC)
-        for r0 in range(0, size, 1024):
-            rows = min(1024, size - r0)
-            strip = np.clip(full[r0:r0 + rows] * 40 + rng.normal(0, 80, (rows, size)), 1, 65535).astype("uint16")
-            ref.write(strip, 1, window=Window(0, r0, size, rows))
-            lo, hi = max(r0, off), min(r0 + rows, off + tsize)
-            if lo < hi:
-                tgt.write(strip[lo - r0:hi - r0, off:off + tsize], 1, window=Window(0, lo - off, tsize, hi - lo))
-    truth = lambda p: np.asarray(p, float) + off  # noqa: E731  (pixels are a window of the reference)
-    gx, gy = np.meshgrid(np.linspace(50, tsize - 50, 25), np.linspace(50, tsize - 50, 25))
-    return Case(name, target, reference, truth, np.column_stack([gx.ravel(), gy.ravel()]),
-                info={"family": "large", "size": size, "georeferencing_error_px": list(shift)})
+    with rasterio.open(target, "w", **tgt_prof) as tgt:
+        for r0 in range(0, tsize, 512):
+            rows = min(512, tsize - r0)
+            d = field.dense(off, off + r0, tsize, rows)
+            xx, yy = np.meshgrid(np.arange(tsize, dtype=np.float32) + off, np.arange(rows, dtype=np.float32) + off + r0)
+            strip = cv2.remap(full, xx + d[..., 0], yy + d[..., 1], cv2.INTER_CUBIC, borderMode=cv2.BORDER_REFLECT)
+            tgt.write(np.clip(strip, 1, 65535).astype("uint16"), 1, window=Window(0, r0, tsize, rows))
+    return case
 
 
 def _pair_case(pair_id: str, data_dir: str) -> Case:

@@ -25,9 +25,9 @@ WINDOW_PX = 96  # the local correction's default window: 'smooth at the window s
 class Field:
     """A displacement field (reference px -> reference px offsets): Gaussian hills plus block patches."""
 
-    def __init__(self, shape, rng, amplitude_px: float, patches: int):
+    def __init__(self, shape, rng, amplitude_px: float, patches: int, hills: int = 6):
         h, w = shape
-        n = 6
+        n = hills
         self.centres = rng.uniform([0, 0], [w, h], (n, 2))
         self.sigmas = rng.uniform(150, 300, n)
         angles = rng.uniform(0, 2 * math.pi, n)
@@ -50,6 +50,16 @@ class Field:
                 inside = inside * _box(xy[:, c] - centre[c], half)
             out += inside[:, None] * shift[None]
         return out
+
+    def dense(self, x0: float, y0: float, width: int, height: int, step: int = 16) -> np.ndarray:
+        """(height, width, 2) field at the pixel centres of a window (col x0, row y0), evaluated every
+        ``step`` px and interpolated (the hills are smooth over hundreds of pixels; no patches here)."""
+        gx = x0 + 0.5 + np.arange(0, width + step, step)
+        gy = y0 + 0.5 + np.arange(0, height + step, step)
+        xx, yy = np.meshgrid(gx, gy)
+        coarse = self(np.column_stack([xx.ravel(), yy.ravel()])).reshape(len(gy), len(gx), 2).astype(np.float32)
+        fine = cv2.resize(coarse, ((len(gx) - 1) * step + 1, (len(gy) - 1) * step + 1), interpolation=cv2.INTER_LINEAR)
+        return fine[:height, :width]
 
     def near_patch_edge(self, xy: np.ndarray, distance: float) -> np.ndarray:
         """Points within ``distance`` of any patch's edge."""

@@ -29,7 +29,7 @@ from ..core.errors import HamtaError, RegistrationCanceled
 from ..core.methods import all_methods
 from ..core.options import MODEL
 
-_CONTEXT = "BatchAlgorithm"
+_CONTEXT = "BatchRegisterAlgorithm"
 
 
 def _advanced(p):
@@ -87,7 +87,8 @@ class BatchRegisterAlgorithm(QgsProcessingAlgorithm):
         self.addParameter(QgsProcessingParameterEnum(self.METHOD, self.tr("Method"), options=batch_methods(),
                                                      defaultValue=0))
         self.addParameter(QgsProcessingParameterEnum(
-            self.MODEL, self.tr("Transformation"), options=[self.tr(MODEL.labels[v]) for v in MODEL.values],
+            self.MODEL, self.tr("Transformation"),
+            options=[QCoreApplication.translate("RegisterAlgorithm", MODEL.labels[v]) for v in MODEL.values],
             defaultValue=MODEL.index("affine")))
         self.addParameter(QgsProcessingParameterBoolean(self.LOCAL, self.tr("Local (non-rigid) correction"), False))
         self.addParameter(QgsProcessingParameterBoolean(

@@ -11,7 +11,8 @@ CONTEXT = "RegisterAlgorithm"
 
 def strings():
     seen = []
-    for choice in (options.MODEL, options.RESAMPLING, options.GRID, options.REFINE, options.TARGET_GEOREF):
+    for choice in (options.MODEL, options.RESAMPLING, options.GRID, options.REFINE, options.TARGET_GEOREF,
+                   options.FORMAT, options.FILL):
         seen.extend(choice.labels.values())
     for method in all_methods().values():
         seen.extend(f.metadata.get("help", f.name) for f in dataclasses.fields(method.params_type))

@@ -15,10 +15,12 @@ __all__ = ["Reproduction", "all_reproductions"]
 
 
 def all_reproductions():
+    from .batch import REPRODUCTION as batch
+    from .large import REPRODUCTION as large
     from .lines_spectral import REPRODUCTION as lines_spectral
     from .ndsift import REPRODUCTION as ndsift
     from .rilbp import REPRODUCTION as rilbp
     from .sibrif import REPRODUCTION as sibrif
     from .writing import REPRODUCTION as writing
 
-    return [rilbp, sibrif, ndsift, lines_spectral, writing]
+    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch]
