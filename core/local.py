@@ -194,7 +194,7 @@ def _thin(sites: np.ndarray, spacing: float) -> np.ndarray:
     if len(sites) < 2:
         return sites
     step = _spacing(sites)
-    every = max(1, int(round(spacing / max(step, 1e-9))))
+    every = max(1, int(math.ceil(spacing / max(step, 1e-9) - 1e-6)))
     cells = np.round((sites - sites.min(axis=0)) / step).astype(int)
     return sites[(cells[:, 0] % every == 0) & (cells[:, 1] % every == 0)]
 

@@ -53,6 +53,7 @@ MODEL = Choice("model", {
     "polynomial-2": "Polynomial 2",
     "polynomial-3": "Polynomial 3",
     "tps": "Thin plate spline",
+    "linear": "Linear (scale and shift per axis, no rotation)",
 }, "affine", aliases={"helmert": "similarity", "polynomial-1": "affine", "poly1": "affine", "poly2": "polynomial-2",
                       "poly3": "polynomial-3", "homography": "projective", "thin-plate-spline": "tps"})
 
@@ -62,7 +63,14 @@ RESAMPLING = Choice("resampling", {
     "cubic": "Cubic",
     "cubicspline": "Cubic B-spline",
     "lanczos": "Lanczos",
-}, "bilinear")
+    "average": "Average (of the pixels an output pixel covers)",
+    "mode": "Mode (most frequent value: classes)",
+    "max": "Maximum",
+    "min": "Minimum",
+    "med": "Median",
+    "q1": "First quartile",
+    "q3": "Third quartile",
+}, "bilinear", aliases={"near": "nearest", "cubic_spline": "cubicspline"})
 
 GRID = Choice("grid", {
     "auto": "Automatic",

@@ -105,7 +105,8 @@ def _fixed_cost(folder: str) -> list:
     from ...cli.demo import make_demo_pair
 
     pair = make_demo_pair(os.path.join(folder, "small"))
-    hamta = shutil.which("hamta") or os.path.join(os.path.dirname(sys.executable), "hamta")
+    beside = os.path.join(os.path.dirname(sys.executable), "hamta")  # this environment's command, not another one
+    hamta = beside if os.path.exists(beside) else shutil.which("hamta")
     rows = []
     for i in range(3):
         out = os.path.join(folder, f"small-out-{i}")

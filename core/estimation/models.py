@@ -18,7 +18,8 @@ from ..coords import apply_matrix, as_xy
 from ..options import canonical_model
 
 MIN_POINTS = {"similarity": 2, "affine": 3, "projective": 4, "polynomial-2": 6, "polynomial-3": 10,
-              "tps": 3}
+              "tps": 3, "linear": 2}
+LINEAR_KINDS = ("linear", "similarity", "affine", "projective")
 
 
 def _loo_from_blocks(design_blocks: np.ndarray, residuals: np.ndarray) -> np.ndarray:
@@ -63,7 +64,11 @@ class LinearModel:
         src, dst = as_xy(src), as_xy(dst)
         if len(src) < MIN_POINTS[kind]:
             raise ValueError(f"{kind} needs at least {MIN_POINTS[kind]} points, got {len(src)}")
-        if kind == "similarity":
+        if kind == "linear":  # QGIS's "Linear": a scale and a shift per axis, no rotation
+            ax, cx = np.linalg.lstsq(np.column_stack([src[:, 0], np.ones(len(src))]), dst[:, 0], rcond=None)[0]
+            ay, cy = np.linalg.lstsq(np.column_stack([src[:, 1], np.ones(len(src))]), dst[:, 1], rcond=None)[0]
+            m = np.array([[ax, 0.0, cx], [0.0, ay, cy], [0, 0, 1.0]])
+        elif kind == "similarity":
             a, b, tx, ty = np.linalg.lstsq(_similarity_design(src).reshape(-1, 4), dst.reshape(-1), rcond=None)[0]
             m = np.array([[a, -b, tx], [b, a, ty], [0, 0, 1.0]])
         elif kind == "affine":
@@ -82,7 +87,11 @@ class LinearModel:
         e = dst - self.apply(src)
         if len(src) <= self.n_min:
             return np.full(len(src), np.nan)
-        if self.kind == "similarity":
+        if self.kind == "linear":
+            blocks = np.zeros((len(src), 2, 4))
+            blocks[:, 0, 0], blocks[:, 0, 1] = src[:, 0], 1.0
+            blocks[:, 1, 2], blocks[:, 1, 3] = src[:, 1], 1.0
+        elif self.kind == "similarity":
             blocks = _similarity_design(src)
         elif self.kind == "affine":
             row = np.column_stack([src, np.ones(len(src))])
@@ -338,7 +347,7 @@ class ThinPlateSplineModel:
 def fit_model(kind: str, src, dst):
     """Least-squares fit of the model named ``kind`` (see :data:`hamta.core.options.MODEL`)."""
     kind = canonical_model(kind)
-    if kind in ("similarity", "affine", "projective"):
+    if kind in LINEAR_KINDS:
         return LinearModel.fit(kind, src, dst)
     if kind == "tps":
         return ThinPlateSplineModel.fit(src, dst)
@@ -362,7 +371,7 @@ def model_from_dict(d: dict, reference_transform=None, reference_crs_wkt=None):
                          reference_crs_wkt)
         return FramedModel(model_from_dict(inner), frame)
     kind = canonical_model(d["type"])
-    if kind in ("similarity", "affine", "projective"):
+    if kind in LINEAR_KINDS:
         return LinearModel(kind, np.asarray(d["target_px_to_reference_px"], float))
     if kind == "tps":
         t = d["tps"]

@@ -33,7 +33,7 @@ class RobustRules:
 
     @classmethod
     def for_run(cls, model: str, options, method: str, target_path: str) -> "RobustRules":
-        kind = model if model in ("similarity", "affine") else "projective"
+        kind = model if model in ("similarity", "affine") else ("affine" if model == "linear" else "projective")
         need = max(options.min_inliers, MIN_POINTS[model] + 2)
         return cls(kind, need, options.robust, options.seed, method, target_path)
 

@@ -44,7 +44,7 @@ def model_georeferencing(result):
     CRS WKT of the map coordinates, transformer options)."""
     model, to_map, crs_wkt = _inner(result)
     kind = model.kind
-    if kind in ("similarity", "affine"):
+    if kind in ("linear", "similarity", "affine"):
         g = affine_to_matrix(to_map) @ model.matrix
         return Affine(g[0, 0], g[0, 1], g[0, 2], g[1, 0], g[1, 1], g[1, 2]), None, crs_wkt, {}
     if kind == "projective":

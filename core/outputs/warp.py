@@ -35,7 +35,7 @@ from rasterio.windows import Window
 from ..coords import as_xy, compose
 from ..errors import OutputError
 from ..estimation.models import local_jacobian
-from ..options import FORMAT, GRID, OutputOptions
+from ..options import FORMAT, GRID, RESAMPLING, OutputOptions
 from ..progress import Monitor
 from .model_vrt import scratch_dir, write_model_vrt
 from .tags import verdict_tags
@@ -47,6 +47,11 @@ THREADS = max(1, min(os.cpu_count() or 1, 4))
 GTIFF_OPTIONS = {"TILED": "YES", "BLOCKXSIZE": "256", "BLOCKYSIZE": "256", "COMPRESS": "DEFLATE",
                  "BIGTIFF": "IF_SAFER", "INTERLEAVE": "BAND"}
 COG_OPTIONS = {"COMPRESS": "DEFLATE", "BIGTIFF": "IF_SAFER", "OVERVIEW_RESAMPLING": "AVERAGE"}
+
+
+def gdal_resampling(name: str) -> Resampling:
+    """rasterio's enum member for a :data:`~hamta.core.options.RESAMPLING` value."""
+    return Resampling[RESAMPLING.check(name).replace("cubicspline", "cubic_spline")]
 
 
 def output_format(path: str, fmt: str = "auto") -> str:
@@ -187,7 +192,7 @@ def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, opt
     bands = list(range(1, src.count + 1))
     row_bytes = max(width * count * np.dtype(dtype).itemsize, 1)
     rows = max(256, int(STRIP_BYTES // row_bytes) // 256 * 256)
-    resampling = Resampling[output.resampling]
+    resampling = gdal_resampling(output.resampling)
     with rasterio.open(path, "w", **profile) as dst:
         for r0 in range(0, height, rows):
             monitor.check()
@@ -214,7 +219,7 @@ def _write_warped_vrt(path, src, result, grid, fill: Fill, output: OutputOptions
     """A VRTWarpedDataset reading the target itself (absolute path) through the serialised transformer."""
     transform, width, height, crs, warp_crs = grid
     with WarpedVRT(src, crs=warp_crs, transform=transform, width=width, height=height,
-                   resampling=Resampling[output.resampling], src_nodata=fill.source, nodata=fill.nodata,
+                   resampling=gdal_resampling(output.resampling), src_nodata=fill.source, nodata=fill.nodata,
                    add_alpha=fill.alpha, warp_mem_limit=WARP_MEMORY_MB, NUM_THREADS=str(THREADS), **options) as vrt:
         staged = path + ".staged.vrt"
         rasterio.shutil.copy(vrt, staged, driver="VRT")

@@ -13,7 +13,7 @@ import rasterio
 from hamta.core import OutputError, OutputOptions, RegisterOptions, register
 from hamta.core.coords import pixel_to_map
 from hamta.core.io.raster import open_raster
-from hamta.core.options import MODEL_CHOICES
+from hamta.core.options import MODEL_CHOICES, RESAMPLING_CHOICES
 from hamta.core.outputs import OutputPaths, write_outputs
 from hamta.core.outputs.model_vrt import write_model_vrt
 from hamta.core.outputs.points import HEADER, qgs_double, read_points
@@ -237,3 +237,13 @@ def test_valid_zeros_stay_valid_and_fill_is_chosen(tmp_path, results, raster_wri
 def test_bad_output_options_are_refused(bad):
     with pytest.raises(ValueError):
         OutputOptions(**bad)
+
+
+@pytest.mark.parametrize("resampling", RESAMPLING_CHOICES)
+def test_every_resampling_choice_warps(tmp_path, results, resampling):
+    out = tmp_path / f"{resampling}.tif"
+    write_outputs(results["affine"], OutputPaths(raster=str(out)),
+                  output=OutputOptions(resampling=resampling, resolution=20.0))
+    with rasterio.open(out) as ds:
+        data = ds.read(1)
+    assert data.std() > 1
