@@ -31,7 +31,10 @@ def _pairs(values: List[str]) -> dict:
 
 
 def cmd_register(args) -> int:
+    import contextlib
+
     from ..core import OutputOptions, RegisterOptions, UnverifiedResult, run
+    from ..core.batch.runner import scheduler_map
     from ..core.outputs import OutputPaths
 
     options = RegisterOptions(model=args.model, max_working_pixels=args.max_working_pixels,
@@ -43,10 +46,12 @@ def cmd_register(args) -> int:
     output = OutputOptions(resampling=args.resampling, grid=args.grid, resolution=args.resolution, crs=args.crs,
                            format=args.format, creation_options=tuple(args.co), fill=args.fill, nodata=args.nodata)
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format)
+    cluster = contextlib.nullcontext() if not args.scheduler else scheduler_map(args.scheduler)
     try:
-        result, written = run(args.target, args.reference, paths,
-                              method=args.method, params=_pairs(args.param), options=options, output=output,
-                              accept_unverified=args.accept_unverified, progress=ProgressBar(not args.quiet))
+        with cluster as map_chunks:
+            result, written = run(args.target, args.reference, paths, method=args.method, params=_pairs(args.param),
+                                  options=options, output=output, accept_unverified=args.accept_unverified,
+                                  progress=ProgressBar(not args.quiet), map_chunks=map_chunks)
     except UnverifiedResult as exc:
         print_result(exc.result, exc.written)
         print(f"hamta: {exc}", file=sys.stderr)
@@ -302,6 +307,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help=f"local correction window side, reference px (default {d.local_window_px})")
     r.add_argument("--local-spacing", type=float, default=d.local_spacing_px,
                    help="local correction grid spacing, reference px (default 0: automatic)")
+    r.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
+                   help="measure the local correction's windows on this Dask cluster (big scenes; its workers need "
+                        "Hamta and the paths); default: threads of this process")
     r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=cmd_register)
 

@@ -17,6 +17,8 @@ how far the global model puts that window from where it is.
 from __future__ import annotations
 
 import math
+import os
+from concurrent.futures import as_completed
 from dataclasses import dataclass, replace
 from typing import Callable, Optional
 
@@ -122,7 +124,7 @@ def local_correction(estimate: Estimate, target, target_bands, reference, refere
         return refine_points(model, chunk, target, target_bands, reference, reference_bands, refine)
 
     if map_chunks is None:
-        parts = [measure(c) for c in _progress(chunks, monitor.span(0.0, 0.9))]
+        parts = _threaded(measure, chunks, monitor.span(0.0, 0.9))
     else:
         monitor.report(0.05, "local shifts")
         parts = map_chunks(measure, chunks)
@@ -206,10 +208,20 @@ def _spacing(sites: np.ndarray) -> float:
     return float(np.median(np.diff(xs))) if len(xs) > 1 else 0.0
 
 
-def _progress(chunks, monitor: Monitor):
-    for i, chunk in enumerate(chunks):
-        monitor.report(i / max(len(chunks), 1), "local shifts")
-        yield chunk
+def _threaded(fn, chunks, monitor: Monitor) -> list:
+    """``fn`` over ``chunks`` on a few threads (reading and correlation release the GIL), in order."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    threads = max(1, min(4, os.cpu_count() or 1, len(chunks)))
+    if threads == 1:
+        return [fn(c) for c in chunks]
+    out = [None] * len(chunks)
+    with ThreadPoolExecutor(threads) as pool:
+        futures = {pool.submit(fn, c): i for i, c in enumerate(chunks)}
+        for done, fut in enumerate(as_completed(futures)):
+            out[futures[fut]] = fut.result()
+            monitor.report((done + 1) / len(chunks), "local shifts")
+    return out
 
 
 def _concat(parts) -> Correspondences:

@@ -74,6 +74,21 @@ def run_batch(jobs: List[Job], settings: BatchSettings = BatchSettings(), *, sch
     return BatchResult([records[j.key] for j in jobs], time.perf_counter() - t0, n_workers, notes)
 
 
+class scheduler_map:
+    """``with scheduler_map("tcp://host:port") as map_chunks:`` a ``map_chunks(fn, chunks)`` for
+    :func:`hamta.core.register` that measures a big scene's local-correction windows on a cluster."""
+
+    def __init__(self, scheduler: str):
+        self.inner = _client(scheduler, None, True)
+
+    def __enter__(self):
+        client = self.inner.__enter__()
+        return lambda fn, chunks: client.gather(client.map(fn, chunks, pure=False))
+
+    def __exit__(self, *exc):
+        return self.inner.__exit__(*exc)
+
+
 def _dask_installed() -> bool:
     import importlib.util
 

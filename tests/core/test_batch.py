@@ -122,3 +122,19 @@ def test_a_worker_killed_mid_batch_loses_no_pair_and_corrupts_no_output(tmp_path
         assert report["run_id"] == manifest["run_id"]
         assert all(os.path.getsize(os.path.join(r["out"], n)) == size for n, size in manifest["files"].items())
         assert not [n for n in os.listdir(r["out"]) if n.startswith(".hamta-staging-")]
+
+
+def test_a_big_scene_measures_its_local_windows_on_the_cluster(tmp_path, demo_pair, cluster):
+    import psutil
+
+    from hamta.cli.main import main
+
+    address, workers = cluster
+    busy = lambda: sum(psutil.Process(w.pid).cpu_times().user for w in workers)  # noqa: E731
+    before = busy()
+    out = tmp_path / "out"
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
+               "--method", "sift", "--local", "--scheduler", address, "--quiet"])
+    report = json.loads((out / "report.json").read_text())
+    assert rc == 0 and report["model"]["type"] == "tps" and report["local"]["n_kept"] >= 40
+    assert busy() - before > 0.3  # the windows were measured by the cluster's workers
