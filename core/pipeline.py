@@ -68,8 +68,11 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
     if method == AUTO:
         if params:
             raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
-        return register_auto(lambda name, p, mon: match_and_fit(inputs, name, p, options, mon, map_chunks), options,
-                             rest)
+        def attempt(name, p, mon, refine):
+            step_options = options if options.refine != "auto" else dataclasses.replace(options, refine=refine)
+            return match_and_fit(inputs, name, p, step_options, mon, map_chunks)
+
+        return register_auto(attempt, options, rest)
     return match_and_fit(inputs, method, params, options, rest, map_chunks)
 
 
