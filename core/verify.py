@@ -384,38 +384,54 @@ def _tail(k: int, n: int, rate: float) -> float:
 def error_field(sites: np.ndarray, offsets: np.ndarray, extent: np.ndarray):
     """(error, bound, scatter) in px from agreeing sites' offsets: the RMS over ``extent`` of an
     error field fitted to them (the mean offset with fewer than 4 sites, a similarity with 4 to 7,
-    an affine from 8), the same plus two standard errors of the fit, and the residual scatter;
-    all None without sites."""
+    an affine from 8, and from 12 a quadratic field when the Bayesian information criterion prefers
+    it: a projective or polynomial model's error curves, and an affine field fitted where the sites
+    are would understate it toward the overlap's edges), the same plus two standard errors of the
+    fit, and the residual scatter; all None without sites."""
     k = len(sites)
     if k == 0 or len(extent) == 0:
         return None, None, None
     centre = extent.mean(axis=0)
     scale = max(float(np.abs(extent - centre).max()), 1.0)
+    order = 0 if k < 4 else (1 if k < 8 else 2)
+    fits = [_field_fit(sites, offsets, extent, centre, scale, order)]
+    if k >= 12:
+        fits.append(_field_fit(sites, offsets, extent, centre, scale, 3))
+    error, bound, scatter, _ = min(fits, key=lambda f: f[3])
+    return error, bound, scatter
 
-    def design(xy):
-        u = (xy - centre) / scale
-        one, zero = np.ones(len(xy)), np.zeros(len(xy))
-        if k < 4:
-            cols = [(one, zero), (zero, one)]
-        elif k < 8:
-            cols = [(one, zero), (zero, one), (u[:, 0], u[:, 1]), (-u[:, 1], u[:, 0])]
-        else:
-            cols = [(one, zero), (zero, one), (u[:, 0], zero), (u[:, 1], zero), (zero, u[:, 0]), (zero, u[:, 1])]
-        return np.stack([np.concatenate(c) for c in cols], axis=1)  # rows: all x, then all y
 
-    a = design(sites)
+def _field_design(xy: np.ndarray, centre, scale: float, order: int) -> np.ndarray:
+    """Rows (all x, then all y) of an error field's design: 0 a shift, 1 a similarity, 2 an affine,
+    3 a quadratic field."""
+    u = (xy - centre) / scale
+    one, zero = np.ones(len(xy)), np.zeros(len(xy))
+    cols = [(one, zero), (zero, one)]
+    if order == 1:
+        cols += [(u[:, 0], u[:, 1]), (-u[:, 1], u[:, 0])]
+    elif order >= 2:
+        terms = [u[:, 0], u[:, 1]] + ([u[:, 0] ** 2, u[:, 0] * u[:, 1], u[:, 1] ** 2] if order == 3 else [])
+        cols += [(t, zero) for t in terms] + [(zero, t) for t in terms]
+    return np.stack([np.concatenate(c) for c in cols], axis=1)
+
+
+def _field_fit(sites, offsets, extent, centre, scale: float, order: int):
+    """(error, bound, scatter, BIC) of one error field fitted to the sites' offsets."""
+    a = _field_design(sites, centre, scale, order)
     b = np.concatenate([offsets[:, 0], offsets[:, 1]])
     coef, *_ = np.linalg.lstsq(a, b, rcond=None)
     resid = b - a @ coef
+    rss = float(resid @ resid)
     dof = max(len(b) - a.shape[1], 1)
-    sigma = max(float(np.sqrt(resid @ resid / dof)), 0.1)
-    e = design(extent)
+    sigma = max(math.sqrt(rss / dof), 0.1)
+    e = _field_design(extent, centre, scale, order)
     field_xy = (e @ coef).reshape(2, -1).T
     error = float(np.sqrt(np.mean(np.sum(field_xy ** 2, axis=1))))
     cov = sigma ** 2 * np.linalg.pinv(a.T @ a)
     var = np.einsum("ij,jk,ik->i", e, cov, e).reshape(2, -1).sum(axis=0)  # per point, x + y
     se = float(np.sqrt(np.mean(var)))
-    return error, error + 2.0 * se, float(np.sqrt(np.mean(resid ** 2) * 2))
+    bic = len(b) * math.log(max(rss, 1e-6 * len(b)) / len(b)) + a.shape[1] * math.log(len(b))
+    return error, error + 2.0 * se, float(np.sqrt(np.mean(resid ** 2) * 2)), bic
 
 
 def _coverage(agreeing: np.ndarray, measured: np.ndarray) -> float:

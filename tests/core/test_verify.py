@@ -98,3 +98,17 @@ def test_error_field_recovers_a_rotation_error_the_mean_would_hide():
     error, bound, scatter = error_field(sites, offsets, sites)
     expected = float(np.sqrt(np.mean(np.sum(offsets ** 2, axis=1))))
     assert error == pytest.approx(expected, rel=1e-6) and scatter < 1e-6 and bound >= error
+
+
+def test_a_curved_error_is_bounded_where_no_site_measured_it():
+    """Offsets that curve (a projective model's error) over sites in the middle of the overlap:
+    the bound must cover the larger error toward the edge, which an affine field would miss."""
+    gx, gy = np.meshgrid(np.linspace(100, 900, 6), np.linspace(300, 900, 5))
+    sites = np.column_stack([gx.ravel(), gy.ravel()])
+    truth = lambda xy: np.column_stack([0.002 * (xy[:, 0] - 500), 8e-6 * (xy[:, 1] - 600) ** 2 - 1.0])  # noqa: E731
+    offsets = truth(sites) + np.random.default_rng(0).normal(0, 0.1, sites.shape)
+    ex, ey = np.meshgrid(np.linspace(25, 975, 20), np.linspace(25, 975, 20))
+    extent = np.column_stack([ex.ravel(), ey.ravel()])
+    true_rms = float(np.sqrt(np.mean(np.sum(truth(extent) ** 2, axis=1))))
+    error, bound, _ = error_field(sites, offsets, extent)
+    assert abs(error - true_rms) < 0.25 * true_rms and bound >= true_rms
