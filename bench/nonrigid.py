@@ -19,7 +19,7 @@ import numpy as np
 from .cases import Canvas, Case, grid_inside, write_raster
 from .synthetic import similarity_matrix
 
-WINDOW_PX = 96  # the local correction's default window: 'smooth at the window scale' is judged against it
+WINDOW_PX = 96  # the local correction's larger default window: 'smooth at the window scale' is judged against it
 
 
 class Field:

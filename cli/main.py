@@ -304,7 +304,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="after the global model, correct local (non-rigid) misalignment from shifts measured on a "
                         "dense grid of windows; the model becomes a thin plate spline through the grid")
     r.add_argument("--local-window", type=int, default=d.local_window_px,
-                   help=f"local correction window side, reference px (default {d.local_window_px})")
+                   help="local correction window side, reference px (default 0: automatic, 64 px, or 96 px for "
+                        "methods that correlate structure across modalities)")
     r.add_argument("--local-spacing", type=float, default=d.local_spacing_px,
                    help="local correction grid spacing, reference px (default 0: automatic)")
     r.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",

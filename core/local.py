@@ -40,7 +40,8 @@ class LocalParams:
     ----------
     window_px : int
         Side of each window. Larger is more robust on weak texture, smaller follows sharper
-        distortions; 96 px resolves fields that vary over a few hundred pixels.
+        distortions (the pipeline picks 64 px for intensity correlation, 96 px for structural
+        descriptors, see :class:`hamta.core.options.RegisterOptions`).
     spacing_px : float
         Grid spacing; 0 picks it so that about ``max_points`` windows cover the overlap, never
         closer than half a window.

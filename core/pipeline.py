@@ -131,8 +131,7 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
     grid = None
     if options.local:
         fit, grid = local_correction(estimate, inputs.target, inputs.target_bands, inputs.reference,
-                                     inputs.reference_bands, LocalParams(options.local_window_px,
-                                                                         options.local_spacing_px),
+                                     inputs.reference_bands, local_params(options, spec.refinement.similarity),
                                      spec.refinement.similarity, monitor.span(0.85, 0.93), map_chunks)
         clock.lap("local")
     verification = verify(fit.model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands,
@@ -148,6 +147,12 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
         stats=make_stats(matches, first.points, fit), timings=timings, notes=list(inputs.plan.notes) + notes,
         diagnostics=dict(matches.diagnostics or {}), correspondences=first.points, verification=verification,
         local=grid)
+
+
+def local_params(options: RegisterOptions, similarity: str) -> LocalParams:
+    """The local correction's settings; an automatic window by what is correlated (see RegisterOptions)."""
+    window = options.local_window_px or (64 if similarity == "ncc" else 96)
+    return LocalParams(window_px=window, spacing_px=options.local_spacing_px)
 
 
 def crs_frame(plan: Plan, target, reference) -> Optional[CrsFrame]:

@@ -61,7 +61,7 @@ def register_settings(values: Mapping[str, Any]):
         reference_band=values.get("REFERENCE_BAND") or None,
         tolerance_px=float(values.get("TOLERANCE") or d.tolerance_px),
         local=bool(values.get("LOCAL")),
-        local_window_px=int(values.get("LOCAL_WINDOW") or d.local_window_px),
+        local_window_px=int(values.get("LOCAL_WINDOW") or 0),
         local_spacing_px=float(values.get("LOCAL_SPACING") or 0.0),
     )
     gpkg, layer = vector_destination(values.get("GCP_LAYER") or "")

@@ -105,8 +105,8 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             self.LOCAL, self.tr("Local (non-rigid) correction: measure shifts on a dense grid of windows after the "
                                 "global model and warp with a thin plate spline through them"), False))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
-            self.LOCAL_WINDOW, self.tr("Local correction window (reference pixels)"),
-            QgsProcessingParameterNumber.Integer, d.local_window_px, minValue=16)))
+            self.LOCAL_WINDOW, self.tr("Local correction window (reference pixels; 0: automatic)"),
+            QgsProcessingParameterNumber.Integer, d.local_window_px, minValue=0)))
         self.addParameter(_advanced(QgsProcessingParameterNumber(
             self.LOCAL_SPACING, self.tr("Local correction grid spacing (reference pixels; 0: automatic)"),
             QgsProcessingParameterNumber.Double, d.local_spacing_px, minValue=0.0)))

@@ -27,7 +27,8 @@ def test_local_correction_follows_a_smooth_field(case, tmp_path):
     assert local.model.kind == "tps" and local.verified
     assert _rmse(case, local) < 0.5 * _rmse(case, glob) and _rmse(case, local) < 0.4
     summary = local.to_report()["local"]
-    assert summary["n_kept"] >= 0.9 * summary["n_windows"] >= 40 and summary["spacing_px"] >= 48
+    assert summary["n_kept"] >= 0.9 * summary["n_windows"] >= 40
+    assert summary["window_px"] == 64 and summary["spacing_px"] >= 32
     write_outputs(local, OutputPaths(gpkg=str(tmp_path / "g.gpkg")), output=OutputOptions())
     with sqlite3.connect(tmp_path / "g.gpkg") as con:
         layers = sorted(r[0] for r in con.execute("SELECT table_name FROM gpkg_contents WHERE data_type='features'"))
