@@ -54,7 +54,55 @@ def make_case(folder: str, source: str, amplitude: float, patches: int, seed: in
     return Case(name, target, reference, truth, grid_inside((h, w), truth, canvas.valid, valid, n=40))
 
 
+def _gdal_shim() -> None:
+    """AROSICS's helpers use GDAL 3.7-3.8 Python API (``with`` on datasets, ``gdal.config_options``);
+    Debian bookworm has 3.6. Add those to 3.6's bindings, in this process only."""
+    from osgeo import gdal, ogr
+
+    if not hasattr(gdal, "config_options"):  # a 3.7 context manager
+        import contextlib
+
+        @contextlib.contextmanager
+        def config_options(options, thread_local=True):
+            old = {k: gdal.GetConfigOption(k) for k in options}
+            for k, v in options.items():
+                gdal.SetConfigOption(k, v)
+            try:
+                yield
+            finally:
+                for k, v in old.items():
+                    gdal.SetConfigOption(k, v)
+
+        gdal.config_options = config_options
+    for cls, close in ((gdal.Dataset, "FlushCache"), (ogr.DataSource, "Release")):  # 3.8 closes on exit
+        if not hasattr(cls, "__enter__"):
+            cls.__enter__ = lambda self: self
+            cls.__exit__ = lambda self, *exc, close=close: getattr(self, close)()
+
+
+def _skimage_shim() -> None:
+    """AROSICS calls ``skimage.measure.ransac(..., rng=)`` (scikit-image 0.20+); Debian's 0.19 names it
+    ``random_state``."""
+    import inspect
+
+    import skimage.measure
+
+    if "rng" in inspect.signature(skimage.measure.ransac).parameters:
+        return
+    original = skimage.measure.ransac
+
+    def ransac(*args, rng=None, **kwargs):
+        return original(*args, random_state=rng, **kwargs)
+
+    skimage.measure.ransac = ransac
+    import arosics.Tie_Point_Grid as grid
+
+    grid.ransac = ransac
+
+
 def arosics_model(case: Case, folder: str):
+    _gdal_shim()
+    _skimage_shim()
     from arosics import COREG_LOCAL
 
     out = os.path.join(folder, f"{case.name}_arosics.tif")

@@ -194,10 +194,12 @@ def test_every_format_holds_the_same_pixels(tmp_path, results, raster_writer):
                 assert ds.profile["tiled"] and ds.compression.name == "deflate"
     assert "<SourceDataset relativeToVRT=\"0\">" in (tmp_path / "c.vrt").read_text()
     # The same warp for the COG; a VRT is warped block by block by GDAL, which does not widen the bilinear
-    # kernel where an output pixel is larger than a target pixel (the GeoTIFF, like gdalwarp, does).
-    for fmt, tolerance in (("cog", 1e-9), ("auto", 0.25)):
+    # kernel where an output pixel is larger than a target pixel (the GeoTIFF, like gdalwarp, does): a few
+    # hundredths of a pixel typically, up to 0.3 px where the kernel meets the edge (GDAL 3.6 and 3.10).
+    for fmt, typical, worst in (("cog", 1e-9, 1e-9), ("auto", 0.05, 0.5)):
         both = np.isfinite(arrays[fmt]) & np.isfinite(arrays["gtiff"])
-        assert both.mean() > 0.5 and np.abs(arrays[fmt] - arrays["gtiff"])[both].max() < tolerance, fmt
+        diff = np.abs(arrays[fmt] - arrays["gtiff"])[both]
+        assert both.mean() > 0.5 and np.median(diff) <= typical and diff.max() < worst, fmt
 
 
 def test_output_crs_keeps_every_pixel_where_the_model_puts_it(tmp_path, results, raster_writer):

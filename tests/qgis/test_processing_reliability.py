@@ -90,7 +90,7 @@ def test_an_unexpected_error_is_wrapped(provider, pair, tmp_path, monkeypatch):
 
 def _layers(path):
     with sqlite3.connect(path) as con:
-        return sorted(r[0] for r in con.execute("SELECT table_name FROM gpkg_contents"))
+        return sorted(r[0] for r in con.execute("SELECT table_name FROM gpkg_contents WHERE data_type = 'features'"))
 
 
 @pytest.mark.parametrize("form", ["ogr-uri", "layername"])
