@@ -36,7 +36,6 @@ from typing import Optional, Tuple
 import cv2
 import numpy as np
 from rasterio.windows import Window
-from scipy import fft as sfft
 from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
@@ -237,7 +236,7 @@ class _TemplateSpectrum:
     def __init__(self, template: np.ndarray, shape):
         t = template - template.mean()
         self.norm = float(np.sqrt((t ** 2).sum()))
-        self.spectrum = np.conj(sfft.rfft2(t, shape, axes=(1, 2)))
+        self.spectrum = np.conj(np.fft.rfft2(t, shape, axes=(1, 2)))
         self.size = template.size
 
 
@@ -245,7 +244,7 @@ class _SearchSpectrum:
     """A (C, t + 2s, t + 2s) descriptor search area as spectra, with its window sums for NCC."""
 
     def __init__(self, search: np.ndarray, side: int):
-        self.spectrum = sfft.rfft2(search, axes=(1, 2))
+        self.spectrum = np.fft.rfft2(search, axes=(1, 2))
         self.shape = search.shape[1:]
         w = (side, side)
         self.s1 = cv2.boxFilter(search.sum(axis=0), -1, w, normalize=False, anchor=(0, 0),
@@ -255,7 +254,7 @@ class _SearchSpectrum:
 
     def ncc(self, template: "_TemplateSpectrum", s: int) -> np.ndarray:
         """(2s + 1, 2s + 1) normalised cross-correlation surface (as :func:`ncc_surface`)."""
-        num = sfft.irfft2((self.spectrum * template.spectrum).sum(axis=0), self.shape)[:2 * s + 1, :2 * s + 1]
+        num = np.fft.irfft2((self.spectrum * template.spectrum).sum(axis=0), self.shape)[:2 * s + 1, :2 * s + 1]
         s1, s2 = self.s1[:2 * s + 1, :2 * s + 1], self.s2[:2 * s + 1, :2 * s + 1]
         var = np.maximum(s2 - s1 ** 2 / template.size, 0.0)
         return num / np.maximum(np.sqrt(var) * template.norm, 1e-9)
@@ -302,9 +301,7 @@ def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: 
     lifted = measured & (np.nan_to_num(z, nan=-np.inf) > z_level)
     z_hits = int(lifted.sum())
     z_chance = _tail(z_hits, n, 0.05)
-    from scipy import stats  # loaded when a registration is verified, not when the engine is imported
-
-    z_mw = (float(stats.mannwhitneyu(z[measured], z_null, alternative="greater").pvalue)
+    z_mw = (mann_whitney_greater(z[measured], z_null)
             if n and len(z_null) >= 8 else 1.0)
     significant = chance <= params.max_chance or (z_chance <= params.max_z_chance and z_mw <= params.max_rank_chance)
     n_clear = k + n_contra
@@ -375,10 +372,41 @@ def _rate(hits: np.ndarray, valid: np.ndarray, floor: float) -> float:
 
 
 def _tail(k: int, n: int, rate: float) -> float:
-    """Probability of ``k`` or more hits among ``n`` sites at chance ``rate`` (1 without sites)."""
-    from scipy import stats
+    """Probability of ``k`` or more hits among ``n`` sites at chance ``rate`` (1 without sites): the
+    binomial upper tail, summed exactly (``n`` is a few dozen sites; scipy.stats would cost half a
+    second of import per run)."""
+    if not n or not k:
+        return 1.0
+    if rate <= 0.0:
+        return 0.0
+    if rate >= 1.0:
+        return 1.0
+    log_p, log_q = math.log(rate), math.log1p(-rate)
+    terms = [math.lgamma(n + 1) - math.lgamma(i + 1) - math.lgamma(n - i + 1) + i * log_p + (n - i) * log_q
+             for i in range(k, n + 1)]
+    top = max(terms)
+    return float(min(1.0, math.exp(top) * sum(math.exp(t - top) for t in terms)))
 
-    return float(stats.binom.sf(k - 1, n, rate)) if n and k else 1.0
+
+def mann_whitney_greater(x: np.ndarray, y: np.ndarray) -> float:
+    """One-sided p-value that ``x`` tends to exceed ``y`` (Mann-Whitney U, normal approximation with
+    tie and continuity corrections: scipy.stats.mannwhitneyu's 'asymptotic' method)."""
+    n1, n2 = len(x), len(y)
+    both = np.concatenate([x, y])
+    order = np.argsort(both, kind="mergesort")
+    ranks = np.empty(len(both))
+    ranks[order] = np.arange(1, len(both) + 1)
+    values, start, counts = np.unique(both[order], return_index=True, return_counts=True)
+    for s, c in zip(start[counts > 1], counts[counts > 1]):  # ties share their mean rank
+        ranks[order[s:s + c]] = s + (c + 1) / 2.0
+    u = ranks[:n1].sum() - n1 * (n1 + 1) / 2.0
+    n = n1 + n2
+    ties = float((counts ** 3 - counts).sum())
+    sigma = math.sqrt(n1 * n2 / 12.0 * ((n + 1) - ties / (n * (n - 1))))
+    if sigma == 0:
+        return 1.0
+    z = (u - n1 * n2 / 2.0 - 0.5) / sigma
+    return 0.5 * math.erfc(z / math.sqrt(2.0))
 
 
 def error_field(sites: np.ndarray, offsets: np.ndarray, extent: np.ndarray):

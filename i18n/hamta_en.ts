@@ -160,72 +160,72 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="10"/>
+        <location filename="core_strings.py" line="11"/>
         <source>Nearest neighbour</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="11"/>
+        <location filename="core_strings.py" line="12"/>
         <source>Bilinear</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="12"/>
+        <location filename="core_strings.py" line="13"/>
         <source>Cubic</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="13"/>
+        <location filename="core_strings.py" line="14"/>
         <source>Cubic B-spline</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="14"/>
+        <location filename="core_strings.py" line="15"/>
         <source>Lanczos</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="15"/>
+        <location filename="core_strings.py" line="23"/>
         <source>Automatic</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="16"/>
+        <location filename="core_strings.py" line="24"/>
         <source>Reference pixel grid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="17"/>
+        <location filename="core_strings.py" line="25"/>
         <source>Target&apos;s native resolution</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="18"/>
+        <location filename="core_strings.py" line="26"/>
         <source>Automatic (when images were decimated)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="19"/>
+        <location filename="core_strings.py" line="27"/>
         <source>Always</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="20"/>
+        <location filename="core_strings.py" line="28"/>
         <source>Never</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="21"/>
+        <location filename="core_strings.py" line="29"/>
         <source>Use when it overlaps the reference</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="22"/>
+        <location filename="core_strings.py" line="30"/>
         <source>Always use (fail otherwise)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="23"/>
+        <location filename="core_strings.py" line="31"/>
         <source>Ignore</source>
         <translation type="unfinished"></translation>
     </message>
@@ -497,598 +497,593 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="31"/>
+        <location filename="core_strings.py" line="39"/>
         <source>What the SAR (target) raster holds: amplitude, intensity or db.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="32"/>
+        <location filename="core_strings.py" line="40"/>
         <source>Lee speckle filter on the SAR image (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="33"/>
+        <location filename="core_strings.py" line="41"/>
         <source>Lee window side, px (not given; 7).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="34"/>
+        <location filename="core_strings.py" line="42"/>
         <source>Equivalent number of looks of the SAR image (not given; 1).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="35"/>
+        <location filename="core_strings.py" line="43"/>
         <source>GGS window shape alpha (Shui &amp; Cheng&apos;s practical setting).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="36"/>
+        <location filename="core_strings.py" line="44"/>
         <source>GGS window width beta, px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="37"/>
+        <location filename="core_strings.py" line="45"/>
         <source>GGS window length sigma_x, px (l_f = 13).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="38"/>
+        <location filename="core_strings.py" line="46"/>
         <source>GGS orientations P (not given; 8).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="39"/>
+        <location filename="core_strings.py" line="47"/>
         <source>Hysteresis low threshold on 1 - ratio (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="40"/>
+        <location filename="core_strings.py" line="48"/>
         <source>Hysteresis high threshold on 1 - ratio (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="41"/>
+        <location filename="core_strings.py" line="49"/>
         <source>Edge components smaller than this are removed (the thesis: 65).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="42"/>
+        <location filename="core_strings.py" line="50"/>
         <source>Radon peaks taken before clustering (not given; 40).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="43"/>
+        <location filename="core_strings.py" line="51"/>
         <source>Radon angle step, degrees (MATLAB&apos;s default 1).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="44"/>
+        <location filename="core_strings.py" line="52"/>
         <source>Fewest edge pixels on a line; 0 = Sui et al.&apos;s 15 px per 256 px of image side.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="45"/>
+        <location filename="core_strings.py" line="53"/>
         <source>Lines closer than this in angle ... (not given; 5).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="46"/>
+        <location filename="core_strings.py" line="54"/>
         <source>... and this in offset are one line (not given; 10).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="47"/>
+        <location filename="core_strings.py" line="55"/>
         <source>Line pairs crossing at less than this are not intersected (Sui et al.).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="48"/>
+        <location filename="core_strings.py" line="56"/>
         <source>Eigenvector matching, VSPM, or their fusion (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="49"/>
+        <location filename="core_strings.py" line="57"/>
         <source>Fusion rule (not given): score-level sum, or cascade (VSPM&apos;s proximity inside eigenvector matching).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="50"/>
+        <location filename="core_strings.py" line="58"/>
         <source>Weight of the eigenvector score in the score-level fusion.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="51"/>
+        <location filename="core_strings.py" line="59"/>
         <source>Eigenvector proximity sigma as a fraction of each point set&apos;s RMS spread (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="52"/>
+        <location filename="core_strings.py" line="60"/>
         <source>VSPM proximity matrix: as printed (eq. 2-73), laplacian or gaussian.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="53"/>
+        <location filename="core_strings.py" line="61"/>
         <source>Crossing angles of matched intersections differ by less (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="54"/>
+        <location filename="core_strings.py" line="62"/>
         <source>Shapiro-Brady eigenvector matching alone (the thesis&apos;s baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="55"/>
+        <location filename="core_strings.py" line="63"/>
         <source>VSPM alone (the thesis&apos;s baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="56"/>
+        <location filename="core_strings.py" line="64"/>
         <source>What the target raster holds when it is SAR: amplitude, intensity or db (other images: leave amplitude).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="57"/>
+        <location filename="core_strings.py" line="65"/>
         <source>No Lee filter: CFOG&apos;s smoothing already averages speckle, and the filter measured no gain (multimodal proxy 8/8 either way; real pairs 0.85 vs 1.06 px median).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="58"/>
+        <location filename="core_strings.py" line="66"/>
         <source>Coarse transform: exhaustive CFOG search (default: it registers where the thesis&apos;s 5-8 matches cannot) or the thesis&apos;s lines.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="59"/>
+        <location filename="core_strings.py" line="67"/>
         <source>Rotations searched, +- degrees (georeferenced targets arrive north-up, so rotation is small).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="60"/>
+        <location filename="core_strings.py" line="68"/>
         <source>Scales searched, 1/max_scale .. max_scale (2 registers the scale family&apos;s 0.5-2, 10/10 against 6/10 for 1.5, for 26 % more time on a 1000 px pair).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="61"/>
+        <location filename="core_strings.py" line="69"/>
         <source>Longest reference side at the first search level, px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="62"/>
+        <location filename="core_strings.py" line="70"/>
         <source>The search compares descriptors minus their local mean over this many first-level px: with the global mean (0) regional orientation statistics favoured wrong axis-aligned candidates (overlap family 8/10; 3 px: 10/10, 6 px: 9/10).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="63"/>
+        <location filename="core_strings.py" line="71"/>
         <source>Side of the CFOG templates, working px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="64"/>
+        <location filename="core_strings.py" line="72"/>
         <source>Search radius of the first dense pass, working px (covers the coarse error).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="65"/>
+        <location filename="core_strings.py" line="73"/>
         <source>Weakest accepted template correlation; RANSAC removes the rest.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="66"/>
+        <location filename="core_strings.py" line="74"/>
         <source>Templates per dense pass.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="67"/>
+        <location filename="core_strings.py" line="75"/>
         <source>Coarse candidates checked by dense matching when the best is not convincing.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="68"/>
+        <location filename="core_strings.py" line="76"/>
         <source>What the SAR raster holds: amplitude, intensity or db (complex is read as amplitude).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="69"/>
+        <location filename="core_strings.py" line="77"/>
         <source>Scale space: nonlinear (the paper), gaussian or bilateral (baselines).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="70"/>
+        <location filename="core_strings.py" line="78"/>
         <source>Run on log amplitude, where speckle is additive and of one strength everywhere (not in the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="71"/>
+        <location filename="core_strings.py" line="79"/>
         <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does: on 1-look speckle it turns 3 of 24 failures into successes (the paper starts from the original image).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="72"/>
+        <location filename="core_strings.py" line="80"/>
         <source>Octaves O (the paper: 4).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="73"/>
+        <location filename="core_strings.py" line="81"/>
         <source>Sub-levels S per octave (the paper: 3; S + 3 images per octave).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="74"/>
+        <location filename="core_strings.py" line="82"/>
         <source>Base scale sigma_0 (gap; Lowe&apos;s 1.6).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="75"/>
+        <location filename="core_strings.py" line="83"/>
         <source>ROEWA exponential weight alpha (gap; SAR-SIFT&apos;s 2).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="76"/>
+        <location filename="core_strings.py" line="84"/>
         <source>Contrast factor K = this percentile of the ROEWA gradient (gap; KAZE&apos;s 70).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="77"/>
+        <location filename="core_strings.py" line="85"/>
         <source>K is multiplied by this at each new octave (the paper: &apos;change K&apos;; AKAZE&apos;s 0.75).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="78"/>
+        <location filename="core_strings.py" line="86"/>
         <source>Gradient inside the conductance: roewa (the paper) or difference.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="79"/>
+        <location filename="core_strings.py" line="87"/>
         <source>DoG contrast threshold on the [0, 1] amplitude (gap; Lowe&apos;s 0.03).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="80"/>
+        <location filename="core_strings.py" line="88"/>
         <source>DoG edge ratio r (Lowe&apos;s 10).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="81"/>
+        <location filename="core_strings.py" line="89"/>
         <source>Drop keypoints whose phase congruency is below pc_threshold (the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="82"/>
+        <location filename="core_strings.py" line="90"/>
         <source>Phase congruency threshold (the paper: 0.01).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="83"/>
+        <location filename="core_strings.py" line="91"/>
         <source>Kovesi&apos;s noise multiplier k (gap; his default 2).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="84"/>
+        <location filename="core_strings.py" line="92"/>
         <source>Range sigma of the bilateral scale space on the [0, 1] amplitude (BFSIFT baseline; not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="85"/>
+        <location filename="core_strings.py" line="93"/>
         <source>Ignore keypoints of the finest octave (BFSIFT does).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="86"/>
+        <location filename="core_strings.py" line="94"/>
         <source>Nearest/second-nearest ratio (the paper: 0.8).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="87"/>
+        <location filename="core_strings.py" line="95"/>
         <source>One-way ratio test: dual ratio matching keeps too few matches on 1-look speckle, and RANSAC removes the extra outliers (the paper: dual-ratio).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="88"/>
+        <location filename="core_strings.py" line="96"/>
         <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does (the paper starts from the original image).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="89"/>
+        <location filename="core_strings.py" line="97"/>
         <source>Dual matching: both directions pass the ratio test (the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="90"/>
+        <location filename="core_strings.py" line="98"/>
         <source>NDSS+SIFT: the paper&apos;s ablation without phase congruency.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="91"/>
+        <location filename="core_strings.py" line="99"/>
         <source>Gaussian scale space (the paper&apos;s SIFT baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="92"/>
+        <location filename="core_strings.py" line="100"/>
         <source>No phase congruency in the baseline.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="93"/>
+        <location filename="core_strings.py" line="101"/>
         <source>Bilateral-filter scale space (BFSIFT).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="94"/>
+        <location filename="core_strings.py" line="102"/>
         <source>No phase congruency in BFSIFT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="95"/>
+        <location filename="core_strings.py" line="103"/>
         <source>BFSIFT skips the finest scale.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="96"/>
+        <location filename="core_strings.py" line="104"/>
         <source>Strongest keypoints kept per image.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="97"/>
+        <location filename="core_strings.py" line="105"/>
         <source>FAST corner threshold (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="98"/>
+        <location filename="core_strings.py" line="106"/>
         <source>Pyramid levels, scale factor 1.2 (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="99"/>
+        <location filename="core_strings.py" line="107"/>
         <source>Nearest/second-nearest Hamming distance ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="100"/>
+        <location filename="core_strings.py" line="108"/>
         <source>Cross-check of matches: none, mutual or dual-ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="101"/>
+        <location filename="core_strings.py" line="109"/>
         <source>Strongest SIFT keypoints kept per image (0 = all).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="102"/>
+        <location filename="core_strings.py" line="110"/>
         <source>Nearest/second-nearest distance ratio (as the SIFT baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="103"/>
+        <location filename="core_strings.py" line="111"/>
         <source>Correspondences per side of the grid that carries the shift.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="104"/>
+        <location filename="core_strings.py" line="112"/>
         <source>Lowest accepted normalised correlation peak.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="105"/>
+        <location filename="core_strings.py" line="113"/>
         <source>Strongest FAST corners kept per image (RIFT: 5000).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="106"/>
+        <location filename="core_strings.py" line="114"/>
         <source>Strongest CenSurE keypoints kept per image (the paper: 2500).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="107"/>
+        <location filename="core_strings.py" line="115"/>
         <source>Smallest |CenSurE response| in grey levels (gap: paper uses CenSurE defaults without values).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="108"/>
+        <location filename="core_strings.py" line="116"/>
         <source>CenSurE&apos;s edge test limit on trace^2/det (Agrawal et al. 2008).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="109"/>
+        <location filename="core_strings.py" line="117"/>
         <source>Region radius = factor x half the outer octagon (gap in the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="110"/>
+        <location filename="core_strings.py" line="118"/>
         <source>Product: quadratic sub-pixel keypoint positions (CenSurE keeps whole pixels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="111"/>
+        <location filename="core_strings.py" line="119"/>
         <source>Nearest/second-nearest distance ratio (gap: the paper&apos;s rule is not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="112"/>
+        <location filename="core_strings.py" line="120"/>
         <source>LBP neighbour radius in region pixels (gap; the paper&apos;s figure shows 1; 2 keeps codes stable under keypoint and resampling jitter).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="113"/>
+        <location filename="core_strings.py" line="121"/>
         <source>Product: Gaussian sigma (region pixels) before coding; the paper has none, and radius-1 codes on raw pixels flip on sensor noise.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="114"/>
+        <location filename="core_strings.py" line="122"/>
         <source>CS-LBP threshold T in grey levels (gap; 0 = exact gain/offset invariance).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="115"/>
+        <location filename="core_strings.py" line="123"/>
         <source>Ring weight: literal 1-(d/h)^2 (the paper) or border 1-(2d/h)^2.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="116"/>
+        <location filename="core_strings.py" line="124"/>
         <source>Faithful: whole-pixel CenSurE positions, as the paper.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="117"/>
+        <location filename="core_strings.py" line="125"/>
         <source>Faithful: radius 1, the paper&apos;s Fig. 1.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="118"/>
+        <location filename="core_strings.py" line="126"/>
         <source>Faithful: no smoothing, as the paper.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="119"/>
+        <location filename="core_strings.py" line="127"/>
         <source>Faithful: whole-pixel CenSurE positions, as in the paper&apos;s comparison.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="120"/>
+        <location filename="core_strings.py" line="128"/>
         <source>Sobel magnitude threshold T (0..255; gap in the paper, default from a sweep).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="121"/>
+        <location filename="core_strings.py" line="129"/>
         <source>Hamming distance under which a keypoint with a near-duplicate in its own image is removed (gap; from a sweep).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="122"/>
+        <location filename="core_strings.py" line="130"/>
         <source>Gradient magnitude: l1 = 0.5|Gx|+0.5|Gy| (OpenCV tutorial, the spec&apos;s reading) or l2 = sqrt(Gx^2+Gy^2)/sqrt(2), which does not change with edge direction.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="123"/>
+        <location filename="core_strings.py" line="131"/>
         <source>to-zero keeps magnitudes above T (the paper); soft subtracts T, so the edge image has no jumps at the threshold for the DoG to fire on.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="124"/>
+        <location filename="core_strings.py" line="132"/>
         <source>Resolution at which the DoG pyramid starts (2 = OpenCV SIFT&apos;s upsampled base, the paper&apos;s; 1 = full resolution, 4x less work).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="125"/>
+        <location filename="core_strings.py" line="133"/>
         <source>Strongest DoG keypoints kept per image (0 = all, as the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="126"/>
+        <location filename="core_strings.py" line="134"/>
         <source>SIFT DoG contrast threshold on the edge image (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="127"/>
+        <location filename="core_strings.py" line="135"/>
         <source>Describe each keypoint on the pyramid level matching its SIFT size (the paper uses a fixed 31-px patch, which breaks beyond ~1.5x scale).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="128"/>
+        <location filename="core_strings.py" line="136"/>
         <source>Lowe ratio on Hamming distances (1 = off, as the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="129"/>
+        <location filename="core_strings.py" line="137"/>
         <source>Spec Appendix B (not in the paper): keep matches at the peaks of the angle and log-scale difference histograms.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="130"/>
+        <location filename="core_strings.py" line="138"/>
         <source>Faithful: OpenCV tutorial magnitude 0.5|Gx|+0.5|Gy|.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="131"/>
+        <location filename="core_strings.py" line="139"/>
         <source>Faithful: threshold-to-zero.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="132"/>
+        <location filename="core_strings.py" line="140"/>
         <source>Faithful: OpenCV SIFT as is (upsampled base).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="133"/>
+        <location filename="core_strings.py" line="141"/>
         <source>Faithful: every DoG keypoint.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="134"/>
+        <location filename="core_strings.py" line="142"/>
         <source>Faithful: one 31-px patch at full resolution for every keypoint.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="135"/>
+        <location filename="core_strings.py" line="143"/>
         <source>Faithful: mutual nearest neighbours without a ratio test.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="136"/>
+        <location filename="core_strings.py" line="144"/>
         <source>Strongest keypoints kept per image (0 = all).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="137"/>
+        <location filename="core_strings.py" line="145"/>
         <source>DoG contrast threshold (OpenCV default, Lowe 2004).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="138"/>
+        <location filename="core_strings.py" line="146"/>
         <source>Edge-response ratio limit (Lowe 2004).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="139"/>
+        <location filename="core_strings.py" line="147"/>
         <source>Lowe&apos;s nearest/second-nearest distance ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="140"/>
+        <location filename="core_strings.py" line="148"/>
         <source>Longest reference side for feature extraction, px: enough detail for RIFT features, and their cost.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="141"/>
+        <location filename="core_strings.py" line="149"/>
         <source>Pyramid levels (factors 2^-k/2) per image; 3 covers scales 1/2 to 2.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="142"/>
+        <location filename="core_strings.py" line="150"/>
         <source>Keypoints kept at the first level (0.7 and 0.5 times that at the next two).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="143"/>
+        <location filename="core_strings.py" line="151"/>
         <source>Rotation-scale hypotheses checked densely (10 gave nothing more).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="144"/>
+        <location filename="core_strings.py" line="152"/>
         <source>Hypotheses refined by local RIFT (5 gave nothing more).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="145"/>
+        <location filename="core_strings.py" line="153"/>
         <source>Longest reference side for the dense check, px: keeps its 30 FFT trials per hypothesis cheap; where CFOG separated right from wrong poses best.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="146"/>
+        <location filename="core_strings.py" line="154"/>
         <source>Longest reference side for local RIFT matching, px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="147"/>
+        <location filename="core_strings.py" line="155"/>
         <source>Fewest local-RIFT inliers for a refined hypothesis.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="104"/>
         <source>Local (non-rigid) correction: measure shifts on a dense grid of windows after the global model and warp with a thin plate spline through them</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../processing/register_algorithm.py" line="107"/>
-        <source>Local correction window (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -1152,38 +1147,83 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="25"/>
+        <location filename="core_strings.py" line="33"/>
         <source>GeoTIFF (tiled, compressed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="27"/>
+        <location filename="core_strings.py" line="35"/>
         <source>Warped VRT (no pixels copied)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="29"/>
+        <location filename="core_strings.py" line="37"/>
         <source>Alpha band</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="30"/>
+        <location filename="core_strings.py" line="38"/>
         <source>Nodata value</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="24"/>
+        <location filename="core_strings.py" line="32"/>
         <source>From the file name (.vrt: VRT, otherwise GeoTIFF)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="26"/>
+        <location filename="core_strings.py" line="34"/>
         <source>Cloud-optimised GeoTIFF (with overviews)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="28"/>
+        <location filename="core_strings.py" line="36"/>
         <source>Automatic (the target&apos;s nodata, NaN for floats, else an alpha band)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="107"/>
+        <source>Local correction window (reference pixels; 0: automatic)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="10"/>
+        <source>Linear (scale and shift per axis, no rotation)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="16"/>
+        <source>Average (of the pixels an output pixel covers)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="17"/>
+        <source>Mode (most frequent value: classes)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="18"/>
+        <source>Maximum</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="19"/>
+        <source>Minimum</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="20"/>
+        <source>Median</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="21"/>
+        <source>First quartile</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="22"/>
+        <source>Third quartile</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

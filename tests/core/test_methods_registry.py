@@ -56,3 +56,16 @@ def test_cfog_dense_fit_uses_the_seed(monkeypatch):
     model, n = cfog._fit((pts, pts + 3.0), seed=23)
     assert n == 40 and np.allclose(model[:, 2], 3.0)
     assert seeds and set(seeds) == {23}
+
+
+def test_every_builtin_method_is_found_in_its_module():
+    """get_method imports only the module BUILTIN names; that module must define the method."""
+    import importlib
+
+    from hamta.core.methods import BUILTIN, all_methods, method_aliases
+
+    assert sorted(all_methods()) == sorted(n for n in BUILTIN if n not in method_aliases())
+    for name, module in BUILTIN.items():
+        method = all_methods()[method_aliases().get(name, name)]
+        defined = vars(importlib.import_module(f"hamta.core.methods.{module}")).values()
+        assert any(v is method for v in defined), (name, module)

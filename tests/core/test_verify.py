@@ -112,3 +112,21 @@ def test_a_curved_error_is_bounded_where_no_site_measured_it():
     true_rms = float(np.sqrt(np.mean(np.sum(truth(extent) ** 2, axis=1))))
     error, bound, _ = error_field(sites, offsets, extent)
     assert abs(error - true_rms) < 0.25 * true_rms and bound >= true_rms
+
+
+def test_chance_tails_match_scipy():
+    """The binomial tail and the Mann-Whitney test are computed here (scipy.stats costs half a second to
+    import); they must agree with scipy's."""
+    from scipy import stats
+
+    from hamta.core.verify import _tail, mann_whitney_greater
+
+    rng = np.random.default_rng(1)
+    for _ in range(200):
+        n = int(rng.integers(1, 40))
+        k, p = int(rng.integers(1, n + 1)), float(rng.uniform(0.001, 0.6))
+        assert _tail(k, n, p) == pytest.approx(stats.binom.sf(k - 1, n, p), rel=1e-9, abs=1e-300)
+        x = np.round(rng.normal(0.5, 1, int(rng.integers(3, 40))), 1)
+        y = np.round(rng.normal(0, 1, int(rng.integers(8, 300))), 1)
+        expected = stats.mannwhitneyu(x, y, alternative="greater", method="asymptotic").pvalue
+        assert mann_whitney_greater(x, y) == pytest.approx(expected, rel=1e-9)
