@@ -6,15 +6,19 @@ so moves are atomic). Publishing then takes the destination folder's lock (``.ha
 replaces into the staging folder, moves the new files into place, removes files of the folder's
 own set that this run does not write (a rerun without ``--vrt`` drops the old ``gcps.vrt``), and
 writes the folder's manifest (``.hamta-manifest.json``: the run's id and files) last. If a move
-fails, what was moved is put back. Staging folders carry their process id: the next run removes
-those of processes that no longer exist (a killed run's leftovers).
+fails, what was moved is put back. Staging folders carry their process id and a tag of their
+host: the next run removes those of processes of this host that no longer exist or were killed and
+not yet reaped (a killed run's leftovers); on a shared file system, another host's are removed once
+a day old, since their process cannot be checked from here.
 """
 from __future__ import annotations
 
 import contextlib
 import errno
+import hashlib
 import json
 import os
+import socket
 import shutil
 import time
 import uuid
@@ -26,6 +30,8 @@ STAGING_PREFIX = ".hamta-staging-"
 MANIFEST = ".hamta-manifest.json"
 LOCK = ".hamta.lock"
 SQLITE_PATH_MAX = 512
+FOREIGN_LEFTOVER_AGE_S = 86400
+HOST_TAG = hashlib.sha1(socket.gethostname().encode()).hexdigest()[:8]
 
 
 def check_writable_folder(folder: str) -> None:
@@ -101,7 +107,7 @@ class OutputSet:
         if folder not in self._staging:
             check_writable_folder(folder)
             remove_leftovers(folder)
-            path = os.path.join(folder, f"{STAGING_PREFIX}{os.getpid()}-{uuid.uuid4().hex[:12]}")
+            path = os.path.join(folder, f"{STAGING_PREFIX}{os.getpid()}-{uuid.uuid4().hex[:12]}-{HOST_TAG}")
             try:
                 os.mkdir(path)
             except OSError as exc:
@@ -216,7 +222,7 @@ def folder_lock(folder: str):
 
 
 def remove_leftovers(folder: str) -> None:
-    """Remove staging folders of processes that no longer run (killed runs)."""
+    """Remove staging folders of runs that no longer exist (see the module docstring)."""
     try:
         names = os.listdir(folder)
     except OSError:
@@ -224,16 +230,32 @@ def remove_leftovers(folder: str) -> None:
     for name in names:
         if not name.startswith(STAGING_PREFIX):
             continue
-        pid = name[len(STAGING_PREFIX):].split("-", 1)[0]
-        if pid.isdigit() and not _alive(int(pid)):
-            shutil.rmtree(os.path.join(folder, name), ignore_errors=True)
+        path = os.path.join(folder, name)
+        pid, _, rest = name[len(STAGING_PREFIX):].partition("-")
+        host = rest.partition("-")[2] or HOST_TAG
+        if not pid.isdigit():
+            continue
+        gone = False
+        if host == HOST_TAG:
+            gone = not _alive(int(pid))
+        else:
+            with contextlib.suppress(OSError):
+                gone = time.time() - os.path.getmtime(path) > FOREIGN_LEFTOVER_AGE_S
+        if gone:
+            shutil.rmtree(path, ignore_errors=True)
 
 
 def _alive(pid: int) -> bool:
+    """Whether process ``pid`` of this host runs; a killed process its parent has not reaped yet
+    (a zombie) does not."""
     if pid == os.getpid():
         return True
     try:
         os.kill(pid, 0)
     except OSError as exc:
         return exc.errno == errno.EPERM
-    return True
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as f:
+            return f.read().rpartition(b")")[2].split()[0] != b"Z"
+    except (OSError, IndexError):
+        return True

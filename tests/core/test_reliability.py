@@ -264,11 +264,19 @@ def test_leftovers_of_a_killed_run_are_removed_by_the_next(tmp_path, pair):
     out.mkdir()
     dead = subprocess.Popen([sys.executable, "-c", "pass"])
     dead.wait()
-    leftover = out / f".hamta-staging-{dead.pid}-deadbeef"
-    leftover.mkdir()
-    (leftover / "registered.tif").write_bytes(b"half")
+    zombie = subprocess.Popen([sys.executable, "-c", "pass"])
+    os.waitid(os.P_PID, zombie.pid, os.WEXITED | os.WNOWAIT)  # ended, not yet reaped: a zombie
+    leftovers = [out / f".hamta-staging-{dead.pid}-deadbeef", out / f".hamta-staging-{zombie.pid}-deadbeef"]
+    old_foreign, new_foreign = (out / f".hamta-staging-{os.getpid()}-cafe-{h}" for h in ("0badc0de", "1badc0de"))
+    for folder in leftovers + [old_foreign, new_foreign]:
+        folder.mkdir()
+        (folder / "registered.tif").write_bytes(b"half")
+    os.utime(old_foreign, (time.time() - 2 * 86400,) * 2)
     assert main(_register(pair, out)) == 0
-    assert not leftover.exists()
+    zombie.wait()
+    assert not any(f.exists() for f in leftovers + [old_foreign])
+    assert new_foreign.exists()  # another host's run may still be writing: kept until a day old
+    shutil.rmtree(new_foreign)
     _assert_one_set(out)
 
 
