@@ -18,8 +18,8 @@ import errno
 import hashlib
 import json
 import os
-import socket
 import shutil
+import socket
 import time
 import uuid
 from typing import Dict, Iterable, Optional
