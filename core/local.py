@@ -7,8 +7,9 @@ is matched at full resolution against the target resampled through the global mo
 gives a local shift. Shifts are filtered (correlation peak, then spatial consistency: a shift far
 from the median of its neighbours is an outlier), smoothed by a local linear fit over each point's
 neighbours (noise averages out, smooth fields and their gradients survive), and the final model is
-a thin plate spline through the grid (GDAL warps it exactly with ``GCP_TPS``). The independent
-check then judges the final model like any other.
+a thin plate spline through the grid (the warped raster is resampled through its exact inverse,
+:mod:`hamta.core.outputs.spline_warp`; the GCP VRT hands it to GDAL as ``GCP_TPS``). The
+independent check then judges the final model like any other.
 
 Coordinates: grid points and shifts are full-resolution reference pixels; the model maps target px
 to reference px (corner convention). A shift is ``global(target position) - reference position``:

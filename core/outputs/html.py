@@ -26,7 +26,7 @@ import cv2
 import numpy as np
 
 from ..coords import as_xy
-from ..estimation.models import local_jacobian
+from ..estimation.inverse import invert_model
 from ..io.raster import RasterInfo, read_image, resolve_bands
 from ..progress import Monitor
 from ..version import __version__
@@ -173,47 +173,6 @@ def warp_to_reference(model, tgt: Preview, ref: Preview) -> Tuple[np.ndarray, np
     inside = cv2.remap(tgt.valid.astype(np.uint8), map_x, map_y, cv2.INTER_NEAREST,
                        borderMode=cv2.BORDER_CONSTANT, borderValue=0) > 0
     return warped, inside & covered
-
-
-def invert_model(model, reference_xy, target_size, tolerance: float = 0.05) -> Tuple[np.ndarray, np.ndarray]:
-    """Target px that ``model`` maps onto ``reference_xy``, and where that inverse holds.
-
-    Models with an ``inverse()`` use it; the others (polynomial, thin plate spline, CRS-framed) are
-    solved by Newton's method from an affine approximation of the inverse over the target
-    (``target_size`` = width, height). A point is kept when the model maps its solution back within
-    ``tolerance`` reference px; it may lie off the target (the caller masks those pixels).
-    """
-    p = as_xy(reference_xy)
-    if hasattr(model, "inverse"):
-        q = model.inverse().apply(p)
-    else:
-        q = _newton_inverse(model, p, target_size)
-    with np.errstate(invalid="ignore", over="ignore"):
-        back = np.linalg.norm(model.apply(np.nan_to_num(q)) - p, axis=1)
-        ok = np.isfinite(q).all(axis=1) & (back < tolerance)
-    return q, ok
-
-
-def _newton_inverse(model, p: np.ndarray, target_size, iterations: int = 12) -> np.ndarray:
-    """Newton's method on ``model.apply(q) = p``, started from the least-squares affine inverse."""
-    w, h = target_size
-    gx, gy = np.meshgrid(np.linspace(0, w, 9), np.linspace(0, h, 9))
-    src = np.column_stack([gx.ravel(), gy.ravel()])
-    dst = model.apply(src)
-    approx = np.linalg.lstsq(np.column_stack([dst, np.ones(len(dst))]), src, rcond=None)[0]
-    q = np.column_stack([p, np.ones(len(p))]) @ approx
-    with np.errstate(all="ignore"):
-        for _ in range(iterations):
-            j = local_jacobian(model, q)
-            r = p - model.apply(q)
-            det = j[:, 0, 0] * j[:, 1, 1] - j[:, 0, 1] * j[:, 1, 0]
-            good = np.abs(det) > 1e-12
-            step = np.zeros_like(q)
-            step[good] = np.linalg.solve(j[good], r[good][..., None])[..., 0]
-            q = q + step
-            if not np.isfinite(step).all() or np.abs(step).max() < 1e-3:
-                break
-    return q
 
 
 def _hat_matrix(n: int, nodes: np.ndarray) -> np.ndarray:

@@ -2,7 +2,8 @@
 
 GDAL warps from the model VRT (:mod:`hamta.core.outputs.model_vrt`), which carries the fitted model
 exactly. Formats: a tiled, compressed GeoTIFF (written in strips of rows by a multithreaded warp, so
-progress is reported, cancellation is honoured and memory stays bounded), a cloud-optimised GeoTIFF
+progress is reported, cancellation is honoured and memory stays bounded; a thin plate spline is
+warped by :mod:`hamta.core.outputs.spline_warp` instead, where OpenCV has the kernel), a cloud-optimised GeoTIFF
 (the same, then GDAL's COG driver adds the overviews), or a warped VRT (the transformation and the
 target's path, no pixels copied). Pixels the target does not cover are marked so that no valid
 pixel (a valid 0 included) becomes nodata: the target's own nodata value, its collar's value, NaN
@@ -38,6 +39,7 @@ from ..estimation.models import local_jacobian
 from ..options import FORMAT, GRID, RESAMPLING, OutputOptions
 from ..progress import Monitor
 from .model_vrt import scratch_dir, write_model_vrt
+from .spline_warp import spline_applies, spline_rows
 from .tags import verdict_tags
 
 PLACEHOLDER_CRS = CRS.from_epsg(3857)  # lets GDAL warp between two grids of a raster without CRS
@@ -193,10 +195,16 @@ def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, opt
     row_bytes = max(width * count * np.dtype(dtype).itemsize, 1)
     rows = max(256, int(STRIP_BYTES // row_bytes) // 256 * 256)
     resampling = gdal_resampling(output.resampling)
+    own = spline_applies(result, dtype, output.resampling)
     with rasterio.open(path, "w", **profile) as dst:
         for r0 in range(0, height, rows):
             monitor.check()
             n = min(rows, height - r0)
+            if own:
+                dst.write(spline_rows(src, bands, result, grid, fill, output.resampling, r0, n),
+                          window=Window(0, r0, width, n))
+                monitor.report((r0 + n) / height, "writing raster")
+                continue
             block = np.zeros((count, n, width), dtype=dtype)
             if fill.nodata is not None:
                 block[:] = fill.nodata

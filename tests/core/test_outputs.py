@@ -106,12 +106,17 @@ def test_gdal_transformer_reproduces_the_model(tmp_path, results, model):
     assert err.max() < (0.01 if model == "projective" else 1e-6)
 
 
-@pytest.mark.parametrize("model", ["affine", "tps"])
-def test_warped_raster_agrees_with_the_model(tmp_path, results, raster_writer, model):
+@pytest.mark.parametrize("model, warper", [("affine", "gdal"), ("tps", "gdal"), ("tps", "spline")])
+def test_warped_raster_agrees_with_the_model(tmp_path, results, raster_writer, monkeypatch, model, warper):
     """Warp a raster whose values are its own pixel-centre coordinates: every output pixel then holds
-    the target position GDAL sampled, which the model must map onto that output pixel. Exact for a
+    the target position sampled, which the model must map onto that output pixel. Exact for a
     geotransform; with GCP transformers GDAL's warper itself adds a few hundredths of a pixel
-    (measured against its own transformer with GDAL 3.6 and 3.10)."""
+    (measured against its own transformer with GDAL 3.6 and 3.10). A spline is warped by
+    :mod:`hamta.core.outputs.spline_warp` (the model's exact inverse), unless forced through GDAL."""
+    from hamta.core.outputs import spline_warp
+
+    if warper == "gdal":
+        monkeypatch.setattr(spline_warp, "KERNELS", {})
     res = results[model]
     t = res.target
     cols, rows = np.meshgrid(np.arange(t.width) + 0.5, np.arange(t.height) + 0.5)
@@ -132,7 +137,44 @@ def test_warped_raster_agrees_with_the_model(tmp_path, results, raster_writer, m
     centres = res.reference_to_map(res.model.apply(sampled))
     x, y = tr.c + (c + 0.5) * tr.a, tr.f + (r + 0.5) * tr.e
     err = np.hypot(centres[:, 0] - x, centres[:, 1] - y) / 10.0  # reference pixels
-    assert np.percentile(err, 99) < (1e-3 if model == "affine" else 0.05)
+    assert np.percentile(err, 99) < (0.05 if (model, warper) == ("tps", "gdal") else 1e-3)
+
+
+@pytest.mark.parametrize("fill", ["nodata", "alpha"])
+def test_spline_warp_matches_gdal_on_values_nodata_and_alpha(tmp_path, results, raster_writer, monkeypatch, fill):
+    """The spline path and GDAL's GCP_TPS warp of the same uint16 target agree: same nodata
+    or alpha convention, the same covered pixels (the spline path also drops the ring of pixels whose
+    kernel touches a nodata hole), the same values up to GDAL's own spline inverse."""
+    from hamta.core.outputs import spline_warp
+
+    res = results["tps"]
+    t = res.target
+    yy, xx = np.mgrid[0:t.height, 0:t.width]
+    data = (2000 + 900 * np.sin(xx / 7.0) * np.cos(yy / 11.0) + 3 * xx).astype("uint16")
+    if fill == "nodata":
+        data[100:160, 200:280] = 0
+    ramp = raster_writer("u16.tif", data, **({"nodata": 0} if fill == "nodata" else {}))
+    res = dataclasses.replace(res, target=open_raster(ramp))
+    assert spline_warp.spline_applies(res, "uint16", "bilinear")
+    outs = {}
+    for how in ("opencv", "gdal"):
+        if how == "gdal":
+            monkeypatch.setattr(spline_warp, "KERNELS", {})
+        write_outputs(res, OutputPaths(raster=str(tmp_path / f"{how}.tif")))
+        with rasterio.open(tmp_path / f"{how}.tif") as ds:
+            outs[how] = (ds.read(), ds.nodata, ds.count, ds.transform)
+    (a, nodata_a, count_a, tr_a), (b, nodata_b, count_b, tr_b) = outs["opencv"], outs["gdal"]
+    assert (nodata_a, count_a, tr_a) == (nodata_b, count_b, tr_b) and a.shape == b.shape
+    if fill == "alpha":
+        assert count_a == 2 and set(np.unique(a[1])) == set(np.unique(b[1])) == {0, 65535}  # as GDAL: the type's max
+        va, vb = a[1] > 0, b[1] > 0
+    else:
+        assert nodata_a == 0 and count_a == 1
+        va, vb = a[0] != 0, b[0] != 0
+    assert not (va & ~vb).any()
+    assert (vb & ~va).sum() < 0.01 * vb.sum()
+    diff = np.abs(a[0].astype(float) - b[0].astype(float))[va]
+    assert np.median(diff) <= 2 and np.percentile(diff, 99) < 40  # values span 1100..3800
 
 
 def test_report_schema(tmp_path, results):
