@@ -1,9 +1,10 @@
 """What a batch registers: one :class:`Job` per target/reference pair.
 
 Sources: a CSV file or a GeoPackage table with a ``target`` column and optional ``reference``,
-``method``, ``model`` and ``output`` columns (paths relative to the list's folder); or a folder or
-glob pattern of targets, all registered onto one reference (a raster or a VRT mosaic). A job
-without its own output folder gets ``<out>/<target name>`` (made unique when names repeat).
+``method``, ``model`` and ``output`` columns (rasters relative to the list's folder, a relative
+``output`` folder under ``out``); or a folder or glob pattern of targets, all registered onto one
+reference (a raster or a VRT mosaic). A job without its own output folder gets
+``<out>/<target name>`` (made unique when names repeat).
 """
 from __future__ import annotations
 
@@ -63,7 +64,8 @@ def read_jobs(source: str, out: str, reference: Optional[str] = None) -> List[Jo
         ref = _path(row.get("reference"), base) or (os.path.abspath(reference) if reference else None)
         if not ref:
             raise InputError(f"Row {i} of the job list '{source}' has no reference, and no --reference was given.")
-        folder = _path(row.get("output"), base) or _unique(os.path.join(os.path.abspath(out), _stem(target)), used)
+        folder = _path(row.get("output"), os.path.abspath(out)) or _unique(os.path.join(os.path.abspath(out),
+                                                                                           _stem(target)), used)
         used.add(folder)
         jobs.append(Job(target, ref, folder, (row.get("method") or "").strip() or None,
                         (row.get("model") or "").strip() or None))

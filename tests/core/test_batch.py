@@ -37,7 +37,7 @@ def test_job_lists_from_csv_geopackage_and_a_pattern(tmp_path, demo_pair):
     jobs = read_jobs(str(tmp_path / "jobs.csv"), str(tmp_path / "out"))
     assert [j.target for j in jobs] == [str(folder / "t00.tif"), str(folder / "t01.tif")]
     assert jobs[0].method == "sift" and jobs[1].method is None
-    assert jobs[0].out == str(tmp_path / "out" / "t00") and jobs[1].out == str(tmp_path / "custom")
+    assert jobs[0].out == str(tmp_path / "out" / "t00") and jobs[1].out == str(tmp_path / "out" / "custom")
     pattern = read_jobs(str(folder / "*.tif"), str(tmp_path / "o"), demo_pair["reference"])
     assert [j.name for j in pattern] == ["t00", "t01"] and len({j.key for j in pattern}) == 2
     with sqlite3.connect(tmp_path / "jobs.gpkg") as con:
