@@ -113,6 +113,7 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None, 
     mp = result.reference_to_map(result.model.apply(edge))
     centre = as_xy([t.width / 2.0, t.height / 2.0])
     scale = math.sqrt(abs(np.linalg.det(local_jacobian(result.model, centre)[0])))  # ref px per target px
+    target_px_size = ref.pixel_size * scale  # map units of one target pixel at the centre
     res_x, res_y = abs(ref.transform.a) or ref.pixel_size, abs(ref.transform.e) or ref.pixel_size
     if grid == "native" or (grid == "auto" and not 0.9 <= scale <= 1.1):
         res_x, res_y = res_x * scale, res_y * scale
@@ -125,6 +126,7 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None, 
         probe = np.array([mid, mid + [res_x, 0.0], mid + [0.0, res_y]])
         px, py = transform_points(ref.crs, out_crs, probe[:, 0], probe[:, 1])
         step = math.sqrt(math.hypot(px[1] - px[0], py[1] - py[0]) * math.hypot(px[2] - px[0], py[2] - py[0]))
+        target_px_size *= step / math.sqrt(res_x * res_y)
         res_x = res_y = step
         xs, ys = transform_points(ref.crs, out_crs, mp[:, 0], mp[:, 1])
         mp = np.column_stack([xs, ys])
@@ -138,7 +140,7 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None, 
     ymax = y0 - math.floor((y0 - mp[:, 1].max()) / res_y) * res_y
     ymin = y0 - math.ceil((y0 - mp[:, 1].min()) / res_y) * res_y
     width, height = int(round((xmax - xmin) / res_x)), int(round((ymax - ymin) / res_y))
-    out_px_per_target_px = (xmax - xmin) * (ymax - ymin) / max(res_x * res_y, 1e-300) / (t.width * t.height)
+    out_px_per_target_px = target_px_size ** 2 / (res_x * res_y)  # from the model's scale, not the grid's
     limit = 16 * t.width * t.height * max(out_px_per_target_px, 1.0) + 1e6
     if width * height > limit or width <= 0 or height <= 0:
         raise OutputError(f"The fitted model maps '{t.path}' onto an implausible {width} x {height} pixel "

@@ -177,6 +177,19 @@ def test_spline_warp_matches_gdal_on_values_nodata_and_alpha(tmp_path, results, 
     assert np.median(diff) <= 2 and np.percentile(diff, 99) < 40  # values span 1100..3800
 
 
+def test_a_model_that_blows_the_grid_up_writes_no_raster(tmp_path, results):
+    """A projective model whose horizon nearly reaches the target's edge maps it onto a grid far
+    larger than its scale at the centre allows: refused, nothing written."""
+    from hamta.core.estimation.models import LinearModel
+
+    res = results["affine"]
+    m = res.model.matrix @ np.array([[1.0, 0, 0], [0, 1.0, 0], [-0.95 / res.target.width, 0, 1.0]])
+    res = dataclasses.replace(res, model=LinearModel("projective", m))
+    with pytest.raises(OutputError, match="implausible"):
+        write_outputs(res, OutputPaths(raster=str(tmp_path / "out" / "r.tif")))
+    assert not (tmp_path / "out" / "r.tif").exists()
+
+
 def test_report_schema(tmp_path, results):
     res = results["affine"]
     written = write_outputs(res, OutputPaths(report=str(tmp_path / "report.json")))
