@@ -168,11 +168,12 @@ def write_warped(path: str, result, output: OutputOptions = OutputOptions(), mon
                     _write_warped_vrt(path, src, result, grid, fill, output, options)
                 elif fmt == "cog":
                     staged = os.path.join(tmp, f"cog-{os.getpid()}.tif")
-                    _write_gtiff(staged, src, result, grid, fill, output, options, monitor.span(0.0, 0.8), {})
+                    _write_gtiff(staged, src, result, grid, fill, output, options, monitor.span(0.0, 0.8), {})  # plain
                     monitor.report(0.8, "writing overviews")
                     rasterio.shutil.copy(staged, path, driver="COG", **_creation(COG_OPTIONS, output))
                 else:
-                    _write_gtiff(path, src, result, grid, fill, output, options, monitor, GTIFF_OPTIONS)
+                    _write_gtiff(path, src, result, grid, fill, output, options, monitor,
+                                 _creation(GTIFF_OPTIONS, output))
     monitor.report(1.0, "writing")
     return fmt
 
@@ -185,12 +186,14 @@ def _creation(defaults: dict, output: OutputOptions) -> dict:
     return options
 
 
-def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, options, monitor: Monitor, defaults):
+def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, options, monitor: Monitor, creation):
+    """The warped GeoTIFF at ``path`` with GDAL creation options ``creation`` (for a COG, the user's
+    options apply to the final copy, not to this staged file)."""
     transform, width, height, crs, warp_crs = grid
     count = src.count + (1 if fill.alpha else 0)
     dtype = src.dtypes[0]
     profile = dict(driver="GTiff", width=width, height=height, count=count, dtype=dtype, nodata=fill.nodata,
-                   **_creation(defaults, output))
+                   **creation)
     if crs is not None:
         profile.update(crs=crs, transform=transform)
     bands = list(range(1, src.count + 1))
