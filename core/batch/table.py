@@ -10,13 +10,12 @@ from __future__ import annotations
 import csv
 import os
 import sqlite3
-import struct
-from typing import List, Optional
+from typing import List
 
 import numpy as np
 
 from ..outputs.atomic import OutputSet
-from ..outputs.gpkg import create_metadata, srs_entry
+from ..outputs.gpkg import add_feature_layer, add_srs, create_metadata, polygon_blob, srs_entry
 
 LAYER = "pairs"
 FIELDS = [("name", "TEXT"), ("status", "TEXT"), ("verdict", "TEXT"), ("method", "TEXT"), ("method_used", "TEXT"),
@@ -50,26 +49,15 @@ def _write_csv(path: str, records: List[dict]) -> None:
 
 def _write_gpkg(path: str, records: List[dict]) -> None:
     crs_wkt, footprints = _footprints(records)
-    srs_id, name, org, code, definition = srs_entry(crs_wkt)
+    srs = srs_entry(crs_wkt)
     con = sqlite3.connect(path)
     try:
         create_metadata(con)
-        if srs_id not in (-1, 0, 4326):
-            con.execute("INSERT OR IGNORE INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)",
-                        (name, srs_id, org, code, definition, ""))
-        cols = ", ".join(f'"{n}" {t}' for n, t in FIELDS)
-        con.execute(f'CREATE TABLE "{LAYER}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom POLYGON, {cols})')
-        marks = ",".join("?" * (len(FIELDS) + 1))
-        names = ",".join(["geom"] + [f'"{n}"' for n, _ in FIELDS])
-        con.executemany(f'INSERT INTO "{LAYER}" ({names}) VALUES ({marks})',
-                        [(_polygon_blob(f, srs_id) if f is not None else None, *_row(r))
-                         for r, f in zip(records, footprints)])
-        every = np.vstack([f for f in footprints if f is not None]) if any(f is not None for f in footprints) else None
-        bounds = [None] * 4 if every is None else every.min(axis=0).tolist() + every.max(axis=0).tolist()
-        con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, max_x, "
-                    "max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)",
-                    (LAYER, "features", LAYER, "Hamta batch: one footprint per registered target", *bounds, srs_id))
-        con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (LAYER, "geom", "POLYGON", srs_id, 0, 0))
+        add_srs(con, srs)
+        rows = [(polygon_blob(f, srs[0]) if f is not None else None, *_row(r)) for r, f in zip(records, footprints)]
+        shapes = [f for f in footprints if f is not None]
+        add_feature_layer(con, LAYER, "POLYGON", FIELDS, rows, np.vstack(shapes) if shapes else None,
+                          "Hamta batch: one footprint per registered target", srs[0])
         con.commit()
     finally:
         con.close()
@@ -94,12 +82,3 @@ def _footprints(records: List[dict]):
         lon, lat = to_wgs84.transform(xy[:, 0], xy[:, 1])
         out.append(np.column_stack([lon, lat]))
     return CRS.from_epsg(4326).to_wkt(), out
-
-
-def _polygon_blob(ring: np.ndarray, srs_id: int) -> Optional[bytes]:
-    ring = np.asarray(ring, float)
-    if len(ring) < 3 or not np.isfinite(ring).all():
-        return None
-    ring = np.vstack([ring, ring[:1]])
-    header = b"GP" + struct.pack("<BBi", 0, 1, srs_id)
-    return header + struct.pack("<BIII", 1, 3, 1, len(ring)) + ring.astype("<f8").tobytes()

@@ -45,14 +45,46 @@ def srs_entry(crs_wkt):
     return 100000, pcrs.name, "NONE", 100000, definition
 
 
+def _gp_header(srs_id: int) -> bytes:
+    return b"GP" + struct.pack("<BBi", 0, 1, srs_id)  # version 0, little endian, no envelope
+
+
 def _point_blob(x: float, y: float, srs_id: int) -> bytes:
-    header = b"GP" + struct.pack("<BBi", 0, 1, srs_id)  # version 0, little endian, no envelope
-    return header + struct.pack("<BIdd", 1, 1, x, y)
+    return _gp_header(srs_id) + struct.pack("<BIdd", 1, 1, x, y)
 
 
 def _line_blob(xy: np.ndarray, srs_id: int) -> bytes:
-    header = b"GP" + struct.pack("<BBi", 0, 1, srs_id)
-    return header + struct.pack("<BII", 1, 2, len(xy)) + np.asarray(xy, "<f8").tobytes()
+    return _gp_header(srs_id) + struct.pack("<BII", 1, 2, len(xy)) + np.asarray(xy, "<f8").tobytes()
+
+
+def polygon_blob(ring: np.ndarray, srs_id: int) -> Optional[bytes]:
+    """A one-ring polygon (closed here), or None for fewer than 3 or non-finite vertices."""
+    ring = np.asarray(ring, float)
+    if len(ring) < 3 or not np.isfinite(ring).all():
+        return None
+    ring = np.vstack([ring, ring[:1]])
+    return _gp_header(srs_id) + struct.pack("<BIII", 1, 3, 1, len(ring)) + ring.astype("<f8").tobytes()
+
+
+def add_srs(con, srs) -> None:
+    """Register ``srs`` (a :func:`srs_entry` tuple) unless the GeoPackage predefines it."""
+    srs_id, name, org, code, definition = srs
+    if srs_id not in (-1, 0, 4326):
+        con.execute("INSERT OR IGNORE INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)",
+                    (name, srs_id, org, code, definition, ""))
+
+
+def add_feature_layer(con, layer: str, geom_type: str, fields, rows, xy, description: str, srs_id: int) -> None:
+    """Create feature table ``layer`` with ``fields`` ((name, SQL type)), insert ``rows`` (geometry blob
+    first, then the fields) and register it; ``xy`` (N, 2) gives its bounds (None or empty: none)."""
+    cols = ", ".join(f'"{n}" {t}' for n, t in fields)
+    con.execute(f'CREATE TABLE "{layer}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom {geom_type}, {cols})')
+    names = ",".join(["geom"] + [f'"{n}"' for n, _ in fields])
+    con.executemany(f'INSERT INTO "{layer}" ({names}) VALUES ({",".join("?" * (len(fields) + 1))})', rows)
+    bounds = [None] * 4 if xy is None or not len(xy) else xy.min(axis=0).tolist() + xy.max(axis=0).tolist()
+    con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, max_x, "
+                "max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)", (layer, "features", layer, description, *bounds, srs_id))
+    con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (layer, "geom", geom_type, srs_id, 0, 0))
 
 
 SHIFT_LAYER_SUFFIX = "_local_shifts"
@@ -70,32 +102,20 @@ def write_gcp_layer(path: str, result, layer: str = TABLE, base: Optional[str] =
     ref = np.array([g.reference_px for g in gcps], float).reshape(-1, 2)
     mp = np.array([g.map_xy for g in gcps], float).reshape(-1, 2)
     dst = destination_coordinates(result, ref, mp)
-    srs_id, name, org, code, definition = _srs(result)
+    srs = _srs(result)
+    srs_id = srs[0]
     if base is not None:
         shutil.copyfile(base, path)
     con = sqlite3.connect(path)
     try:
         create_metadata(con)
         _drop_layer(con, layer)
-        if srs_id not in (-1, 0, 4326):
-            con.execute("INSERT OR IGNORE INTO gpkg_spatial_ref_sys VALUES (?,?,?,?,?,?)",
-                        (name, srs_id, org, code, definition, ""))
-        cols = ", ".join(f'"{n}" {t}' for n, t in _FIELDS)
-        con.execute(f'CREATE TABLE "{layer}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom POINT, {cols})')
-        rows = []
-        for i, g in enumerate(gcps):
-            rows.append((_point_blob(dst[i, 0], dst[i, 1], srs_id), i + 1, int(g.enabled), g.target_px[0],
-                         g.target_px[1], g.reference_px[0], g.reference_px[1], g.map_xy[0], g.map_xy[1],
-                         g.residual_px, g.residual_xy[0], g.residual_xy[1], g.score))
-        marks = ",".join("?" * (len(_FIELDS) + 1))
-        names = ",".join(["geom"] + [f'"{n}"' for n, _ in _FIELDS])
-        con.executemany(f'INSERT INTO "{layer}" ({names}) VALUES ({marks})', rows)
-        bounds = (dst.min(axis=0).tolist() + dst.max(axis=0).tolist()) if len(dst) else [None] * 4
+        add_srs(con, srs)
+        rows = [(_point_blob(dst[i, 0], dst[i, 1], srs_id), i + 1, int(g.enabled), g.target_px[0], g.target_px[1],
+                 g.reference_px[0], g.reference_px[1], g.map_xy[0], g.map_xy[1], g.residual_px, g.residual_xy[0],
+                 g.residual_xy[1], g.score) for i, g in enumerate(gcps)]
         description = f"Hamta ground control points (run {result.run_id}); {verdict_text(result)}"
-        con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, "
-                    "max_x, max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)",
-                    (layer, "features", layer, description, bounds[0], bounds[1], bounds[2], bounds[3], srs_id))
-        con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (layer, "geom", "POINT", srs_id, 0, 0))
+        add_feature_layer(con, layer, "POINT", _FIELDS, rows, dst, description, srs_id)
         write_default_style(con, layer)
         _drop_layer(con, layer + SHIFT_LAYER_SUFFIX)
         if result.local is not None:
@@ -113,21 +133,13 @@ def _write_shifts(con, result, layer: str, srs_id: int) -> None:
     ends = start + SHIFT_EXAGGERATION * grid.shift_xy
     a = destination_coordinates(result, start, result.reference_to_map(start))
     b = destination_coordinates(result, ends, result.reference_to_map(ends))
-    cols = ", ".join(f'"{n}" {t}' for n, t in _SHIFT_FIELDS)
-    con.execute(f'CREATE TABLE "{layer}" (fid INTEGER PRIMARY KEY AUTOINCREMENT NOT NULL, geom LINESTRING, {cols})')
     rows = [(_line_blob(np.array([a[i], b[i]]), srs_id), i + 1, int(grid.kept[i]), float(start[i, 0]),
              float(start[i, 1]), float(grid.shift_xy[i, 0]), float(grid.shift_xy[i, 1]),
              float(np.hypot(*grid.shift_xy[i])), float(grid.smoothed_xy[i, 0]), float(grid.smoothed_xy[i, 1]),
              float(grid.score[i])) for i in range(len(start))]
-    names = ",".join(["geom"] + [f'"{n}"' for n, _ in _SHIFT_FIELDS])
-    con.executemany(f'INSERT INTO "{layer}" ({names}) VALUES ({",".join("?" * (len(_SHIFT_FIELDS) + 1))})', rows)
-    both = np.vstack([a, b]) if len(a) else np.zeros((0, 2))
-    bounds = (both.min(axis=0).tolist() + both.max(axis=0).tolist()) if len(both) else [None] * 4
     description = (f"Hamta local shifts (run {result.run_id}): window centre to centre + {SHIFT_EXAGGERATION:g} x "
                    "the shift (global model minus the window's position, reference px); kept = used for the fit")
-    con.execute("INSERT INTO gpkg_contents (table_name, data_type, identifier, description, min_x, min_y, max_x, "
-                "max_y, srs_id) VALUES (?,?,?,?,?,?,?,?,?)", (layer, "features", layer, description, *bounds, srs_id))
-    con.execute("INSERT INTO gpkg_geometry_columns VALUES (?,?,?,?,?,?)", (layer, "geom", "LINESTRING", srs_id, 0, 0))
+    add_feature_layer(con, layer, "LINESTRING", _SHIFT_FIELDS, rows, np.vstack([a, b]), description, srs_id)
 
 
 def is_geopackage(path: str) -> bool:
