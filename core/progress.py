@@ -41,7 +41,7 @@ class Monitor:
 
     def check(self) -> None:
         """Raise :class:`RegistrationCanceled` when the caller asked to stop."""
-        if self._is_canceled is not None and self._is_canceled():
+        if self.canceled():
             raise RegistrationCanceled("Registration canceled; no outputs were written.")
 
     def span(self, start: float, stop: float) -> "Monitor":

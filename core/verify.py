@@ -393,12 +393,8 @@ def mann_whitney_greater(x: np.ndarray, y: np.ndarray) -> float:
     tie and continuity corrections: scipy.stats.mannwhitneyu's 'asymptotic' method)."""
     n1, n2 = len(x), len(y)
     both = np.concatenate([x, y])
-    order = np.argsort(both, kind="mergesort")
-    ranks = np.empty(len(both))
-    ranks[order] = np.arange(1, len(both) + 1)
-    values, start, counts = np.unique(both[order], return_index=True, return_counts=True)
-    for s, c in zip(start[counts > 1], counts[counts > 1]):  # ties share their mean rank
-        ranks[order[s:s + c]] = s + (c + 1) / 2.0
+    _, inverse, counts = np.unique(both, return_inverse=True, return_counts=True)
+    ranks = (np.cumsum(counts) - (counts - 1) / 2.0)[inverse.ravel()]  # ties share their mean rank
     u = ranks[:n1].sum() - n1 * (n1 + 1) / 2.0
     n = n1 + n2
     ties = float((counts ** 3 - counts).sum())
