@@ -48,10 +48,11 @@ def spline_rows(src, bands, result, grid, fill, resampling: str, r0: int, n: int
     if fill.nodata is not None:
         out[:len(bands)] = fill.nodata
     alpha = np.iinfo(dtype).max if np.issubdtype(dtype, np.integer) else 255  # as GDAL's warper
+    step = lattice_px(result.model)
     for t0 in range(0, n, TILE_PX):
         for c0 in range(0, width, TILE_PX):
             h, w = min(TILE_PX, n - t0), min(TILE_PX, width - c0)
-            xs, ys = target_positions(result, transform, crs, c0, r0 + t0, w, h)
+            xs, ys = target_positions(result, transform, crs, c0, r0 + t0, w, h, step)
             tile, valid = _resample(src, bands, xs, ys, fill, resampling)
             if tile is None:
                 continue
@@ -63,10 +64,10 @@ def spline_rows(src, bands, result, grid, fill, resampling: str, r0: int, n: int
     return out
 
 
-def target_positions(result, transform: Affine, crs, c0: int, r0: int, w: int, h: int):
+def target_positions(result, transform: Affine, crs, c0: int, r0: int, w: int, h: int, step: int):
     """Target pixel positions (x, y arrays of shape (h, w)) of the centres of output pixels
-    ``c0 .. c0 + w`` x ``r0 .. r0 + h``, through the exact inverse of the model on a lattice."""
-    step = lattice_px(result.model)
+    ``c0 .. c0 + w`` x ``r0 .. r0 + h``, through the exact inverse of the model on a lattice every
+    ``step`` output pixels (:func:`lattice_px`)."""
     cols = np.arange(0, w + step, step, dtype=float)
     rows = np.arange(0, h + step, step, dtype=float)
     cc, rr = np.meshgrid(c0 + cols + 0.5, r0 + rows + 0.5)
