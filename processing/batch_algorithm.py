@@ -8,7 +8,6 @@ from qgis.core import (
     QgsProcessingOutputNumber,
     QgsProcessingOutputVectorLayer,
     QgsProcessingParameterBoolean,
-    QgsProcessingParameterDefinition,
     QgsProcessingParameterEnum,
     QgsProcessingParameterFile,
     QgsProcessingParameterFolderDestination,
@@ -25,16 +24,12 @@ from ..core.batch import read_jobs, run_batch
 from ..core.batch.jobs import jobs_for_targets
 from ..core.batch.table import write_results
 from ..core.batch.task import BatchSettings
-from ..core.errors import HamtaError, RegistrationCanceled
+from ..core.errors import HamtaError
 from ..core.methods import all_methods
 from ..core.options import MODEL
+from .register_algorithm import advanced, enum_parameter, feedback_progress
 
 _CONTEXT = "BatchRegisterAlgorithm"
-
-
-def _advanced(p):
-    p.setFlags(p.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
-    return p
 
 
 def batch_methods():
@@ -86,19 +81,16 @@ class BatchRegisterAlgorithm(QgsProcessingAlgorithm):
             optional=True, fileFilter=self.tr("Job lists (*.csv *.gpkg)")))
         self.addParameter(QgsProcessingParameterEnum(self.METHOD, self.tr("Method"), options=batch_methods(),
                                                      defaultValue=0))
-        self.addParameter(QgsProcessingParameterEnum(
-            self.MODEL, self.tr("Transformation"),
-            options=[QCoreApplication.translate("RegisterAlgorithm", MODEL.labels[v]) for v in MODEL.values],
-            defaultValue=MODEL.index("affine")))
+        self.addParameter(enum_parameter(self.MODEL, self.tr("Transformation"), "affine"))
         self.addParameter(QgsProcessingParameterBoolean(self.LOCAL, self.tr("Local (non-rigid) correction"), False))
         self.addParameter(QgsProcessingParameterBoolean(
             self.KEEP_UNVERIFIED, self.tr("Keep unverified results"), False))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.TOLERANCE, self.tr("Accuracy asked for (reference pixels)"), QgsProcessingParameterNumber.Double,
             RegisterOptions().tolerance_px, minValue=0.01)))
-        self.addParameter(_advanced(QgsProcessingParameterString(
+        self.addParameter(advanced(QgsProcessingParameterString(
             self.SCHEDULER, self.tr("Dask scheduler (tcp://host:port; empty: a local cluster)"), "", optional=True)))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.WORKERS, self.tr("Workers of the local cluster (0: one per CPU)"),
             QgsProcessingParameterNumber.Integer, 0, minValue=0)))
         self.addParameter(QgsProcessingParameterFolderDestination(self.OUTPUT_FOLDER, self.tr("Output folder")))
@@ -128,18 +120,12 @@ class BatchRegisterAlgorithm(QgsProcessingAlgorithm):
         scheduler = self.parameterAsString(parameters, self.SCHEDULER, context).strip() or None
         workers = self.parameterAsInt(parameters, self.WORKERS, context) or None
 
-        def progress(fraction, message):
-            feedback.setProgress(100.0 * fraction)
-            if message:
-                feedback.setProgressText(message)
-
+        progress = feedback_progress(feedback)
         try:
             jobs = self._jobs(parameters, context, out)
             result = run_batch(jobs, settings, scheduler=scheduler, workers=workers, processes=False,
                                progress=progress, is_canceled=feedback.isCanceled)
             tables = write_results(out, result.records)
-        except RegistrationCanceled as exc:
-            raise QgsProcessingException(str(exc)) from None
         except HamtaError as exc:
             raise QgsProcessingException(str(exc)) from None
         except Exception as exc:  # a bug or a cluster problem: a clear message, never a raw traceback

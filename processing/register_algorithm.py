@@ -33,9 +33,27 @@ from .mapping import ENUMS, method_parameter_name, method_values, register_setti
 _CONTEXT = "RegisterAlgorithm"  # every string below is translated in this context
 
 
-def _advanced(p):
+def advanced(p):
+    """``p`` shown under Advanced."""
     p.setFlags(p.flags() | QgsProcessingParameterDefinition.FlagAdvanced)
     return p
+
+
+def enum_parameter(name, description, default=None):
+    """An enum parameter showing the translated labels of ``ENUMS[name]``, in its value order."""
+    choice = ENUMS[name]
+    labels = [QCoreApplication.translate(_CONTEXT, choice.labels[v]) for v in choice.values]
+    return QgsProcessingParameterEnum(name, description, options=labels,
+                                      defaultValue=choice.index(default or choice.default))
+
+
+def feedback_progress(feedback):
+    """A ``progress(fraction, message)`` callback reporting to Processing ``feedback``."""
+    def progress(fraction, message):
+        feedback.setProgress(100.0 * fraction)
+        if message:
+            feedback.setProgressText(message)
+    return progress
 
 
 class RegisterAlgorithm(QgsProcessingAlgorithm):
@@ -85,70 +103,64 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
     def tags(self):
         return self.tr("georeference,coregistration,registration,GCP,match,align,warp").split(",")
 
-    def _enum(self, name, description, default=None):
-        """An enum parameter showing the translated labels of ``ENUMS[name]``, in its value order."""
-        choice = ENUMS[name]
-        return QgsProcessingParameterEnum(name, description, options=[self.tr(choice.labels[v]) for v in choice.values],
-                                          defaultValue=choice.index(default or choice.default))
-
     def initAlgorithm(self, config=None):
         method = self.method()
         d = RegisterOptions(model="affine") if method is None else resolve_options(RegisterOptions(), method)
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Target raster (to georeference)")))
         self.addParameter(QgsProcessingParameterRasterLayer(self.REFERENCE, self.tr("Reference raster")))
-        self.addParameter(self._enum(self.MODEL, self.tr("Transformation"), d.model))
-        self.addParameter(self._enum(self.RESAMPLING, self.tr("Resampling")))
+        self.addParameter(enum_parameter(self.MODEL, self.tr("Transformation"), d.model))
+        self.addParameter(enum_parameter(self.RESAMPLING, self.tr("Resampling")))
         self.addParameter(QgsProcessingParameterBoolean(
             self.KEEP_UNVERIFIED, self.tr("Keep unverified results (write the outputs even when the independent check "
                                           "does not confirm the registration)"), False))
         self.addParameter(QgsProcessingParameterBoolean(
             self.LOCAL, self.tr("Local (non-rigid) correction: measure shifts on a dense grid of windows after the "
                                 "global model and warp with a thin plate spline through them"), False))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.LOCAL_WINDOW, self.tr("Local correction window (reference pixels; 0: automatic)"),
             QgsProcessingParameterNumber.Integer, d.local_window_px, minValue=0)))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.LOCAL_SPACING, self.tr("Local correction grid spacing (reference pixels; 0: automatic)"),
             QgsProcessingParameterNumber.Double, d.local_spacing_px, minValue=0.0)))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.TOLERANCE, self.tr("Accuracy asked for (reference pixels): verified only within it"),
             QgsProcessingParameterNumber.Double, d.tolerance_px, minValue=0.01)))
-        self.addParameter(_advanced(QgsProcessingParameterBand(
+        self.addParameter(advanced(QgsProcessingParameterBand(
             self.TARGET_BAND, self.tr("Target band to match (empty: luminance of RGB, else band 1)"),
             parentLayerParameterName=self.TARGET, optional=True)))
-        self.addParameter(_advanced(QgsProcessingParameterBand(
+        self.addParameter(advanced(QgsProcessingParameterBand(
             self.REFERENCE_BAND, self.tr("Reference band to match"), parentLayerParameterName=self.REFERENCE,
             optional=True)))
-        self.addParameter(_advanced(self._enum(self.TARGET_GEOREF, self.tr("Target's own georeferencing"))))
-        self.addParameter(_advanced(self._enum(self.GRID, self.tr("Output pixel grid"))))
-        self.addParameter(_advanced(QgsProcessingParameterCrs(
+        self.addParameter(advanced(enum_parameter(self.TARGET_GEOREF, self.tr("Target's own georeferencing"))))
+        self.addParameter(advanced(enum_parameter(self.GRID, self.tr("Output pixel grid"))))
+        self.addParameter(advanced(QgsProcessingParameterCrs(
             self.OUTPUT_CRS, self.tr("Output CRS (empty: the reference's)"), optional=True)))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.RESOLUTION, self.tr("Output pixel size in output CRS units (empty: from the pixel grid)"),
             QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.0)))
-        self.addParameter(_advanced(self._enum(self.FORMAT, self.tr("Output format"))))
-        self.addParameter(_advanced(QgsProcessingParameterString(
+        self.addParameter(advanced(enum_parameter(self.FORMAT, self.tr("Output format"))))
+        self.addParameter(advanced(QgsProcessingParameterString(
             self.CREATION_OPTIONS, self.tr("GDAL creation options (KEY=VALUE, separated by spaces)"), "",
             optional=True)))
-        self.addParameter(_advanced(self._enum(self.FILL, self.tr("Pixels outside the target"))))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(enum_parameter(self.FILL, self.tr("Pixels outside the target"))))
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.NODATA, self.tr("Nodata value (with 'Nodata value' above; empty: the target's, else 0)"),
             QgsProcessingParameterNumber.Double, None, optional=True)))
-        self.addParameter(_advanced(self._enum(self.REFINE, self.tr("Full-resolution refinement"))))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(enum_parameter(self.REFINE, self.tr("Full-resolution refinement"))))
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.MAX_WORKING_PIXELS, self.tr("Working image size (pixels)"), QgsProcessingParameterNumber.Integer,
             d.max_working_pixels, minValue=4096)))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.RANSAC_THRESHOLD, self.tr("RANSAC tolerance (working pixels; empty: the method's)"),
             QgsProcessingParameterNumber.Double, d.ransac_threshold_px, optional=method is None, minValue=0.1)))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.MAX_GCPS, self.tr("Maximum number of GCPs"), QgsProcessingParameterNumber.Integer, d.max_gcps,
             minValue=4)))
-        self.addParameter(_advanced(QgsProcessingParameterNumber(
+        self.addParameter(advanced(QgsProcessingParameterNumber(
             self.SEED, self.tr("Random seed"), QgsProcessingParameterNumber.Integer, d.seed, minValue=0)))
         for f in self._fields():
             p = self._method_parameter(f)
-            self.addParameter(p if f.metadata.get("basic") else _advanced(p))
+            self.addParameter(p if f.metadata.get("basic") else advanced(p))
 
         self.addParameter(QgsProcessingParameterRasterDestination(self.OUTPUT, self.tr("Georeferenced raster")))
         self.addParameter(QgsProcessingParameterVectorDestination(
@@ -267,11 +279,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             raise QgsProcessingException(self.tr("GCP points are written to a GeoPackage: choose a .gpkg file (got "
                                                  "'{}').").format(values[self.GCP_LAYER]))
 
-        def progress(fraction, message):
-            feedback.setProgress(100.0 * fraction)
-            if message:
-                feedback.setProgressText(message)
-
+        progress = feedback_progress(feedback)
         params = {} if method is None else method_values(method, values)
         try:
             result, written = run(target, reference, paths, method=self.METHOD, params=params, options=options,
