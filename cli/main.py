@@ -138,8 +138,7 @@ def cmd_methods(args) -> int:
 
     from ..core.methods import all_methods
 
-    order = {"method": 0, "baseline": 1, "faithful": 2}
-    methods = sorted(all_methods().values(), key=lambda m: (order.get(m.kind, 3), m.name != "sift", m.name))
+    methods = sorted(all_methods().values(), key=lambda m: (m.menu_rank, m.name != "sift", m.name))
     if not args.verbose:
         rows = [("auto", "default", "any pair: tries methods from fast to robust until one's result verifies")]
         rows += [(m.name, m.kind, m.advice) for m in methods]

@@ -34,8 +34,7 @@ _CONTEXT = "BatchRegisterAlgorithm"
 
 def batch_methods():
     """The methods offered, in menu order: auto, then the product methods, then the rest."""
-    order = {"method": 0, "baseline": 1, "faithful": 2}
-    return [AUTO] + [m.name for m in sorted(all_methods().values(), key=lambda m: (order.get(m.kind, 3), m.name))]
+    return [AUTO] + [m.name for m in sorted(all_methods().values(), key=lambda m: (m.menu_rank, m.name))]
 
 
 class BatchRegisterAlgorithm(QgsProcessingAlgorithm):

@@ -56,29 +56,29 @@ def read_jobs(source: str, out: str, reference: Optional[str] = None) -> List[Jo
         if not rows:
             raise InputError(f"No raster matches '{source}'.")
     base = os.path.dirname(os.path.abspath(source)) if os.path.isfile(source) else os.getcwd()
+    return _jobs(rows, base, out, reference, f"the job list '{source}'")
+
+
+def jobs_for_targets(targets: List[str], reference: str, out: str) -> List[Job]:
+    """One job per target onto ``reference``, each into ``<out>/<target name>`` (unique)."""
+    return _jobs([{"target": t} for t in targets], os.getcwd(), out, reference, "the targets")
+
+
+def _jobs(rows: list, base: str, out: str, reference: Optional[str], source: str) -> List[Job]:
+    """Jobs from ``rows`` (dicts of the list's columns), rasters relative to ``base``."""
     jobs, used = [], set()
     for i, row in enumerate(rows, start=1):
         target = _path(row.get("target"), base)
         if not target:
-            raise InputError(f"Row {i} of the job list '{source}' has no target.")
+            raise InputError(f"Row {i} of {source} has no target.")
         ref = _path(row.get("reference"), base) or (os.path.abspath(reference) if reference else None)
         if not ref:
-            raise InputError(f"Row {i} of the job list '{source}' has no reference, and no --reference was given.")
+            raise InputError(f"Row {i} of {source} has no reference, and no --reference was given.")
         folder = _path(row.get("output"), os.path.abspath(out)) or _unique(os.path.join(os.path.abspath(out),
                                                                                            _stem(target)), used)
         used.add(folder)
         jobs.append(Job(target, ref, folder, (row.get("method") or "").strip() or None,
                         (row.get("model") or "").strip() or None))
-    return jobs
-
-
-def jobs_for_targets(targets: List[str], reference: str, out: str) -> List[Job]:
-    """One job per target onto ``reference``, each into ``<out>/<target name>`` (unique)."""
-    jobs, used = [], set()
-    for target in targets:
-        folder = _unique(os.path.join(os.path.abspath(out), _stem(target)), used)
-        used.add(folder)
-        jobs.append(Job(os.path.abspath(target), os.path.abspath(reference), folder))
     return jobs
 
 

@@ -71,6 +71,11 @@ class Method:
     use_when: str = ""
 
     @property
+    def menu_rank(self) -> int:
+        """Place of its kind in menus: product methods, then baselines, then faithful versions."""
+        return {"method": 0, "baseline": 1, "faithful": 2}.get(self.kind, 3)
+
+    @property
     def advice(self) -> str:
         """:attr:`use_when`, or what a faithful version or a baseline is for."""
         if self.use_when:
