@@ -43,7 +43,7 @@ def run_unit(unit, config) -> list:
     sequential = [register_job(job, settings) for job in jobs]
     seq_s = time.perf_counter() - t0
     jobs = read_jobs(targets, os.path.join(folder, "cluster"), pair["reference"])
-    with _cluster(2, folder) as address:
+    with DaskProcesses(2, folder) as address:
         t0 = time.perf_counter()
         result = run_batch(jobs, settings, scheduler=address)
         cluster_s = time.perf_counter() - t0
@@ -52,8 +52,9 @@ def run_unit(unit, config) -> list:
              "workers": result.workers}]
 
 
-class _cluster:
-    """A local scheduler and ``n`` single-threaded workers, each its own process."""
+class DaskProcesses:
+    """A local scheduler and ``n`` single-threaded workers, each its own process (as on a real
+    cluster); ``procs`` holds the scheduler's process, then the workers'. Also the test suite's."""
 
     def __init__(self, n: int, folder: str):
         self.n, self.folder = n, folder

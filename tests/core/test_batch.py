@@ -3,11 +3,7 @@ import json
 import os
 import shutil
 import signal
-import socket
 import sqlite3
-import subprocess
-import sys
-import time
 
 import pytest
 
@@ -15,8 +11,6 @@ from hamta.core.batch import read_jobs, run_batch
 from hamta.core.batch.table import write_results
 from hamta.core.batch.task import BatchSettings
 from hamta.core.errors import InputError
-
-pytest.importorskip("distributed")
 
 SIFT = BatchSettings(method="sift")
 
@@ -74,32 +68,14 @@ def test_a_local_cluster_registers_records_failures_and_resumes(tmp_path, demo_p
     assert again.counts() == {"pairs": 4, "verified": 3, "unverified": 0, "failed": 1, "resumed": 3}
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 @pytest.fixture
 def cluster(tmp_path):
     """A scheduler and two single-threaded workers, each its own process (as on a real cluster)."""
-    port = _free_port()
-    address = f"tcp://127.0.0.1:{port}"
-    cli = [sys.executable, "-m"]
-    procs = [subprocess.Popen(cli + ["distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", str(port),
-                                     "--no-dashboard"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
-    time.sleep(2)
-    workers = [subprocess.Popen(cli + ["distributed.cli.dask_worker", address, "--nthreads", "1", "--no-nanny",
-                                       "--no-dashboard", "--local-directory", str(tmp_path / f"w{i}")],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL) for i in range(2)]
-    from distributed import Client
+    from hamta.bench.reproductions.batch import DaskProcesses
 
-    with Client(address, timeout="30s") as client:
-        client.wait_for_workers(2, timeout=60)
-    yield address, workers
-    for p in workers + procs:
-        p.kill()
-        p.wait()
+    processes = DaskProcesses(2, str(tmp_path))
+    with processes as address:
+        yield address, processes.procs[1:]
 
 
 def test_a_worker_killed_mid_batch_loses_no_pair_and_corrupts_no_output(tmp_path, demo_pair, cluster):
