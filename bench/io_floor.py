@@ -11,7 +11,7 @@ import os
 import time
 import warnings
 
-from .reproductions.writing import measured
+from .memory import measured
 
 
 def io_floor(case, folder: str) -> dict:

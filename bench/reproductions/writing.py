@@ -22,24 +22,14 @@ import time
 
 import numpy as np
 
-from ..memory import PeakRss
+from ..memory import PeakRss, measured
 from .base import Reproduction
 
-SPAWN = ("import os, sys; pid = os.posix_spawnp(sys.argv[1], sys.argv[1:], os.environ); "
-         "_, status, usage = os.wait4(pid, 0); print(usage.ru_maxrss / 1024.0, os.waitstatus_to_exitcode(status))")
 TARGET_SIDE = 4064  # 16.5 Mpx
 
 
 def units(config):
     return ["gtiff", "cog", "fixed-cost"]
-
-
-def measured(cmd) -> tuple:
-    """(seconds, peak MB, exit code) of a program run in a fresh process."""
-    t0 = time.perf_counter()
-    out = subprocess.run([sys.executable, "-c", SPAWN, *cmd], capture_output=True, text=True, check=True)
-    peak, code = out.stdout.split()
-    return time.perf_counter() - t0, float(peak), int(code)
 
 
 def _pair(folder: str):
