@@ -33,18 +33,11 @@ def _pairs(values: List[str]) -> dict:
 def cmd_register(args) -> int:
     import contextlib
 
-    from ..core import OutputOptions, RegisterOptions, UnverifiedResult, run
+    from ..core import UnverifiedResult, run
     from ..core.batch.runner import scheduler_map
     from ..core.outputs import OutputPaths
 
-    options = RegisterOptions(model=args.model, max_working_pixels=args.max_working_pixels,
-                              ransac_threshold_px=args.ransac_threshold, seed=args.seed, refine=args.refine,
-                              max_gcps=args.max_gcps, target_georef=args.target_georef,
-                              target_band=args.target_band, reference_band=args.reference_band,
-                              tolerance_px=args.tolerance, auto_budget_s=args.auto_budget, local=args.local,
-                              local_window_px=args.local_window, local_spacing_px=args.local_spacing)
-    output = OutputOptions(resampling=args.resampling, grid=args.grid, resolution=args.resolution, crs=args.crs,
-                           format=args.format, creation_options=tuple(args.co), fill=args.fill, nodata=args.nodata)
+    options, output = settings_from(args)
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format)
     cluster = contextlib.nullcontext() if not args.scheduler else scheduler_map(args.scheduler)
     try:
@@ -86,20 +79,16 @@ def _fmt(v) -> str:
 
 
 def cmd_batch(args) -> int:
-    from ..core import OutputOptions, RegisterOptions
     from ..core.batch import read_jobs, run_batch
     from ..core.batch.table import write_results
     from ..core.batch.task import BatchSettings
 
-    options = RegisterOptions(model=args.model, tolerance_px=args.tolerance, local=args.local,
-                              auto_budget_s=args.auto_budget)
-    output = OutputOptions(resampling=args.resampling, format=args.format)
+    options, output = settings_from(args)
     jobs = read_jobs(args.source, args.out, args.reference)
     settings = BatchSettings(method=args.method, options=options, output=output,
                              accept_unverified=args.accept_unverified)
     result = run_batch(jobs, settings, scheduler=args.scheduler, workers=args.workers,
                        progress=ProgressBar(not args.quiet))
-    os.makedirs(args.out, exist_ok=True)
     tables = write_results(args.out, result.records)
     for r in result.records:
         if r["status"] != "verified":
@@ -222,17 +211,7 @@ def cmd_train_pca_sift(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from ..core.options import (
-        FILL,
-        FORMAT,
-        GRID,
-        MODEL,
-        REFINE,
-        RESAMPLING,
-        TARGET_GEOREF,
-        OutputOptions,
-        RegisterOptions,
-    )
+    from ..core.options import OutputOptions, RegisterOptions
     from ..core.version import __version__
 
     d, o = RegisterOptions(), OutputOptions()
@@ -250,67 +229,13 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--method", default="auto",
                    help="matching method (see 'hamta methods'); default auto: methods from fast to robust until one's "
                         "result verifies")
-    r.add_argument("--model", default=None,
-                   help=f"transform model: {', '.join(MODEL.values)} (default: the method's, affine for most)")
     r.add_argument("--param", action="append", default=[], metavar="KEY=VALUE",
                    help="method parameter, repeatable (see 'hamta methods --verbose')")
-    r.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values,
-                   help=f"resampling of the warped output (default {o.resampling})")
-    r.add_argument("--grid", default=o.grid, choices=GRID.values,
-                   help="output pixel grid: the reference's, the target's own resolution, or auto (the reference's "
-                        f"when the resolutions are within 10 %%) (default {o.grid})")
-    r.add_argument("--resolution", type=float, default=None,
-                   help="output pixel size in output CRS units (default: from --grid)")
-    r.add_argument("--crs", default=None,
-                   help="output CRS: EPSG:code, WKT or PROJ string (default: the reference's CRS)")
-    r.add_argument("--format", default=o.format, choices=FORMAT.values,
-                   help="warped raster: gtiff (tiled, DEFLATE), cog (cloud-optimised, with overviews) or vrt (a warped "
-                        "VRT reading the target, written as registered.vrt) (default gtiff)")
-    r.add_argument("--co", action="append", default=[], metavar="KEY=VALUE",
-                   help="GDAL creation option of the warped raster, repeatable (e.g. COMPRESS=ZSTD, PREDICTOR=2)")
-    r.add_argument("--fill", default=o.fill, choices=FILL.values,
-                   help="how pixels outside the target are marked: auto (the target's nodata or collar value, NaN "
-                        "for floats, else an alpha band, so valid zeros stay valid), alpha, or nodata (default auto)")
-    r.add_argument("--nodata", type=float, default=None,
-                   help="nodata value with --fill nodata (default: the target's, else 0)")
     r.add_argument("--vrt", action="store_true", help="also write gcps.vrt (target + GCPs, no resampling)")
-    r.add_argument("--max-working-pixels", type=int, default=d.max_working_pixels,
-                   help=f"pixel budget of the images matched (larger rasters are read decimated, then refined at "
-                        f"full resolution) (default {d.max_working_pixels})")
-    r.add_argument("--ransac-threshold", type=float, default=None,
-                   help="outlier threshold, working pixels (default: the method's, 3 for most)")
-    r.add_argument("--seed", type=int, default=d.seed, help=f"random seed of RANSAC and sampling (default {d.seed})")
-    r.add_argument("--refine", default=d.refine, choices=REFINE.values,
-                   help="full-resolution refinement of the matches: auto refines when an image was decimated or the "
-                        f"method asks for it (default {d.refine})")
-    r.add_argument("--max-gcps", type=int, default=d.max_gcps,
-                   help=f"most GCPs kept (well spread) for the fit and the outputs (default {d.max_gcps})")
-    r.add_argument("--target-georef", default=d.target_georef, choices=TARGET_GEOREF.values,
-                   help="use the target's own georeferencing as a starting point (auto: when it overlaps the "
-                        f"reference), or ignore it when it is wrong (default {d.target_georef})")
-    r.add_argument("--target-band", type=int, default=None,
-                   help="band of the target to match (default: luminance of RGB, else band 1)")
-    r.add_argument("--reference-band", type=int, default=None,
-                   help="band of the reference to match (default: luminance of RGB, else band 1)")
-    r.add_argument("--tolerance", type=float, default=d.tolerance_px,
-                   help=f"accuracy asked for, reference px: a result is verified only when the independent check "
-                        f"bounds its error within this (default {d.tolerance_px:g})")
-    r.add_argument("--accept-unverified", action="store_true",
-                   help="write the outputs even when the result is not verified (the verdict is in every output)")
-    r.add_argument("--auto-budget", type=float, default=d.auto_budget_s,
-                   help=f"seconds after which 'auto' starts no further method (default {d.auto_budget_s:g})")
-    r.add_argument("--local", action="store_true",
-                   help="after the global model, correct local (non-rigid) misalignment from shifts measured on a "
-                        "dense grid of windows; the model becomes a thin plate spline through the grid")
-    r.add_argument("--local-window", type=int, default=d.local_window_px,
-                   help="local correction window side, reference px (default 0: automatic, 64 px, or 96 px for "
-                        "methods that correlate structure across modalities)")
-    r.add_argument("--local-spacing", type=float, default=d.local_spacing_px,
-                   help="local correction grid spacing, reference px (default 0: automatic)")
+    _add_register_options(r, d, o)
     r.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
                    help="measure the local correction's windows on this Dask cluster (big scenes; its workers need "
                         "Hamta and the paths); default: threads of this process")
-    r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=cmd_register)
 
     bt = sub.add_parser("batch", help="register many targets, in parallel on Dask (a local cluster or a scheduler)",
@@ -324,18 +249,11 @@ def build_parser() -> argparse.ArgumentParser:
     bt.add_argument("--reference", default=None, help="the reference for targets from a folder or pattern (a raster "
                                                       "or a VRT mosaic)")
     bt.add_argument("--method", default="auto", help="matching method of every pair (a job's own overrides it)")
-    bt.add_argument("--model", default=None, help=f"transform model: {', '.join(MODEL.values)}")
-    bt.add_argument("--local", action="store_true", help="local (non-rigid) correction after the global model")
-    bt.add_argument("--tolerance", type=float, default=d.tolerance_px, help="accuracy asked for, reference px")
-    bt.add_argument("--accept-unverified", action="store_true", help="write the outputs of unverified pairs too")
-    bt.add_argument("--auto-budget", type=float, default=d.auto_budget_s, help="seconds per pair for 'auto'")
-    bt.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values, help="resampling of the output")
-    bt.add_argument("--format", default=o.format, choices=FORMAT.values, help="warped raster format")
+    _add_register_options(bt, d, o)
     bt.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
                     help="an existing Dask scheduler (workers need Hamta installed and access to the paths); "
                          "default: a local cluster")
     bt.add_argument("--workers", type=int, default=None, help="workers of the local cluster (default: CPU count)")
-    bt.add_argument("--quiet", action="store_true", help="no progress bar")
     bt.set_defaults(func=cmd_batch)
 
     m = sub.add_parser("map-points", help="map target pixels through the model stored in a report.json")
@@ -377,6 +295,82 @@ def build_parser() -> argparse.ArgumentParser:
     dm.set_defaults(func=cmd_demo)
     return p
 
+
+
+def _add_register_options(p, d, o) -> None:
+    """Options of a registration and its outputs, the same for 'register' and every pair of 'batch'."""
+    from ..core.options import FILL, FORMAT, GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF
+
+    p.add_argument("--model", default=None,
+                   help=f"transform model: {', '.join(MODEL.values)} (default: the method's, affine for most)")
+    p.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values,
+                   help=f"resampling of the warped output (default {o.resampling})")
+    p.add_argument("--grid", default=o.grid, choices=GRID.values,
+                   help="output pixel grid: the reference's, the target's own resolution, or auto (the reference's "
+                        f"when the resolutions are within 10 %%) (default {o.grid})")
+    p.add_argument("--resolution", type=float, default=None,
+                   help="output pixel size in output CRS units (default: from --grid)")
+    p.add_argument("--crs", default=None,
+                   help="output CRS: EPSG:code, WKT or PROJ string (default: the reference's CRS)")
+    p.add_argument("--format", default=o.format, choices=FORMAT.values,
+                   help="warped raster: gtiff (tiled, DEFLATE), cog (cloud-optimised, with overviews) or vrt (a warped "
+                        "VRT reading the target, written as registered.vrt) (default gtiff)")
+    p.add_argument("--co", action="append", default=[], metavar="KEY=VALUE",
+                   help="GDAL creation option of the warped raster, repeatable (e.g. COMPRESS=ZSTD, PREDICTOR=2)")
+    p.add_argument("--fill", default=o.fill, choices=FILL.values,
+                   help="how pixels outside the target are marked: auto (the target's nodata or collar value, NaN "
+                        "for floats, else an alpha band, so valid zeros stay valid), alpha, or nodata (default auto)")
+    p.add_argument("--nodata", type=float, default=None,
+                   help="nodata value with --fill nodata (default: the target's, else 0)")
+    p.add_argument("--max-working-pixels", type=int, default=d.max_working_pixels,
+                   help=f"pixel budget of the images matched (larger rasters are read decimated, then refined at "
+                        f"full resolution) (default {d.max_working_pixels})")
+    p.add_argument("--ransac-threshold", type=float, default=None,
+                   help="outlier threshold, working pixels (default: the method's, 3 for most)")
+    p.add_argument("--seed", type=int, default=d.seed, help=f"random seed of RANSAC and sampling (default {d.seed})")
+    p.add_argument("--refine", default=d.refine, choices=REFINE.values,
+                   help="full-resolution refinement of the matches: auto refines when an image was decimated or the "
+                        f"method asks for it (default {d.refine})")
+    p.add_argument("--max-gcps", type=int, default=d.max_gcps,
+                   help=f"most GCPs kept (well spread) for the fit and the outputs (default {d.max_gcps})")
+    p.add_argument("--target-georef", default=d.target_georef, choices=TARGET_GEOREF.values,
+                   help="use the target's own georeferencing as a starting point (auto: when it overlaps the "
+                        f"reference), or ignore it when it is wrong (default {d.target_georef})")
+    p.add_argument("--target-band", type=int, default=None,
+                   help="band of the target to match (default: luminance of RGB, else band 1)")
+    p.add_argument("--reference-band", type=int, default=None,
+                   help="band of the reference to match (default: luminance of RGB, else band 1)")
+    p.add_argument("--tolerance", type=float, default=d.tolerance_px,
+                   help=f"accuracy asked for, reference px: a result is verified only when the independent check "
+                        f"bounds its error within this (default {d.tolerance_px:g})")
+    p.add_argument("--accept-unverified", action="store_true",
+                   help="write the outputs even when the result is not verified (the verdict is in every output)")
+    p.add_argument("--auto-budget", type=float, default=d.auto_budget_s,
+                   help=f"seconds after which 'auto' starts no further method (default {d.auto_budget_s:g})")
+    p.add_argument("--local", action="store_true",
+                   help="after the global model, correct local (non-rigid) misalignment from shifts measured on a "
+                        "dense grid of windows; the model becomes a thin plate spline through the grid")
+    p.add_argument("--local-window", type=int, default=d.local_window_px,
+                   help="local correction window side, reference px (default 0: automatic, 64 px, or 96 px for "
+                        "methods that correlate structure across modalities)")
+    p.add_argument("--local-spacing", type=float, default=d.local_spacing_px,
+                   help="local correction grid spacing, reference px (default 0: automatic)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def settings_from(args):
+    """(RegisterOptions, OutputOptions) from the options :func:`_add_register_options` added."""
+    from ..core import OutputOptions, RegisterOptions
+
+    options = RegisterOptions(model=args.model, max_working_pixels=args.max_working_pixels,
+                              ransac_threshold_px=args.ransac_threshold, seed=args.seed, refine=args.refine,
+                              max_gcps=args.max_gcps, target_georef=args.target_georef,
+                              target_band=args.target_band, reference_band=args.reference_band,
+                              tolerance_px=args.tolerance, auto_budget_s=args.auto_budget, local=args.local,
+                              local_window_px=args.local_window, local_spacing_px=args.local_spacing)
+    output = OutputOptions(resampling=args.resampling, grid=args.grid, resolution=args.resolution, crs=args.crs,
+                           format=args.format, creation_options=tuple(args.co), fill=args.fill, nodata=args.nodata)
+    return options, output
 
 def main(argv: Optional[List[str]] = None) -> int:
     """Run one ``hamta`` command; returns its exit code (see ``EXIT_*``); never shows a traceback
