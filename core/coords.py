@@ -21,6 +21,16 @@ def as_xy(points) -> np.ndarray:
     return np.ascontiguousarray(xy)
 
 
+def raster_outline(width: float, height: float, n: int, ends: bool = False) -> np.ndarray:
+    """Points along the border of a ``width`` x ``height`` raster (pixels, corner convention),
+    clockwise from the top-left corner: ``n`` per side (the side's last point left out unless
+    ``ends``, so each corner appears once)."""
+    s = np.linspace(0.0, 1.0, n) if ends else np.linspace(0.0, 1.0, n)[:-1]
+    w, h = float(width), float(height)
+    return np.concatenate([np.column_stack([s * w, 0 * s]), np.column_stack([0 * s + w, s * h]),
+                           np.column_stack([w - s * w, 0 * s + h]), np.column_stack([0 * s, h - s * h])])
+
+
 def opencv_to_corner(xy) -> np.ndarray:
     """OpenCV pixel coordinates (centres at integers) -> corner-origin pixel coordinates."""
     return as_xy(xy) + 0.5

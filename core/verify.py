@@ -40,6 +40,7 @@ from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
 from .area.cfog import cfog, peak_offset
+from .coords import raster_outline
 from .estimation.models import local_jacobian
 from .io.raster import RasterInfo, open_dataset, read_image
 from .progress import Monitor
@@ -469,11 +470,7 @@ def _coverage(agreeing: np.ndarray, measured: np.ndarray) -> float:
 
 def footprint(model, target: RasterInfo) -> np.ndarray:
     """The target's outline in reference px (64 points), as ``model`` maps it."""
-    s = np.linspace(0.0, 1.0, 17)[:-1]
-    w, h = target.width, target.height
-    edge = np.concatenate([np.column_stack([s * w, 0 * s]), np.column_stack([0 * s + w, s * h]),
-                           np.column_stack([w - s * w, 0 * s + h]), np.column_stack([0 * s, h - s * h])])
-    return model.apply(edge)
+    return model.apply(raster_outline(target.width, target.height, 17))
 
 
 def _overlap(outline: np.ndarray, reference: RasterInfo):

@@ -14,8 +14,7 @@ import time
 from dataclasses import dataclass, replace
 from typing import Optional
 
-import numpy as np
-
+from ..coords import raster_outline
 from ..errors import HamtaError, UnverifiedResult
 from ..options import OutputOptions, RegisterOptions
 from .jobs import Job
@@ -70,26 +69,24 @@ def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
         return None
     if not same:
         return None
-    record = from_report(job, job.method or settings.method, rep.get("timings_s", {}).get("total", 0.0))
+    record = from_report(job, job.method or settings.method, rep.get("timings_s", {}).get("total", 0.0), rep)
     record["resumed"] = True
     return record
 
 
-def from_report(job: Job, method: str, seconds: float) -> dict:
-    """A job's record from the ``report.json`` its run wrote."""
+def from_report(job: Job, method: str, seconds: float, rep: Optional[dict] = None) -> dict:
+    """A job's record from the ``report.json`` its run wrote (``rep``: that report, already read)."""
     from ..mapping import map_points_from_report
 
     path = os.path.join(job.out, "report.json")
-    with open(path, encoding="utf-8") as f:
-        rep = json.load(f)
+    if rep is None:
+        with open(path, encoding="utf-8") as f:
+            rep = json.load(f)
     quality = rep.get("quality") or {}
     verdict = quality.get("verdict")
-    w, h = rep["target"]["width"], rep["target"]["height"]
-    s = np.linspace(0.0, 1.0, 9)
-    outline = np.concatenate([np.column_stack([s * w, 0 * s]), np.column_stack([0 * s + w, s * h]),
-                              np.column_stack([w - s * w, 0 * s + h]), np.column_stack([0 * s, h - s * h])])
+    border = raster_outline(rep["target"]["width"], rep["target"]["height"], 9, ends=True)
     try:
-        footprint = [p["map"] for p in map_points_from_report(path, outline)]
+        footprint = [p["map"] for p in map_points_from_report(path, border)]
     except HamtaError:
         footprint = None
     status = "verified" if verdict == "verified" else "unverified"

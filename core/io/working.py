@@ -24,7 +24,7 @@ from rasterio.warp import Resampling, reproject
 from rasterio.windows import Window
 from shapely.geometry import Polygon, box
 
-from ..coords import as_xy, compose, map_to_pixel, pixel_to_map
+from ..coords import as_xy, compose, map_to_pixel, pixel_to_map, raster_outline
 from ..errors import GeoreferencingError, InputError, NoOverlapError
 from ..options import TARGET_GEOREF
 from .raster import RasterInfo, budget_shape, read_image
@@ -177,12 +177,7 @@ def _check_content(data, valid, info: RasterInfo, role: str, where: str) -> None
 
 def footprint(info: RasterInfo, crs: Optional[CRS], points_per_side: int = 21) -> Polygon:
     """Outline of a raster in map coordinates of ``crs`` (its own CRS when equal or None)."""
-    t = np.linspace(0.0, 1.0, points_per_side)[:-1]
-    w, h = info.width, info.height
-    edge = np.concatenate([
-        np.column_stack([t * w, np.zeros_like(t)]), np.column_stack([np.full_like(t, w), t * h]),
-        np.column_stack([w - t * w, np.full_like(t, h)]), np.column_stack([np.zeros_like(t), h - t * h]),
-    ])
+    edge = raster_outline(info.width, info.height, points_per_side)
     xy = _reproject_xy(_transformer(info.crs, crs), pixel_to_map(info.transform, edge))
     poly = Polygon(xy[np.all(np.isfinite(xy), axis=1)])
     return poly if poly.is_valid else poly.buffer(0)

@@ -33,7 +33,7 @@ from rasterio.warp import reproject
 from rasterio.warp import transform as transform_points
 from rasterio.windows import Window
 
-from ..coords import as_xy, compose
+from ..coords import as_xy, compose, raster_outline
 from ..errors import OutputError
 from ..estimation.models import local_jacobian
 from ..options import FORMAT, GRID, RESAMPLING, OutputOptions
@@ -107,10 +107,7 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None, 
                               f"'{ref.path}' has none, so the output is on its pixel grid.")
         return Affine.identity(), ref.width, ref.height, None
     t = result.target
-    s = np.linspace(0, 1, 33)
-    edge = np.concatenate([np.column_stack([s * t.width, 0 * s]), np.column_stack([s * t.width, 0 * s + t.height]),
-                           np.column_stack([0 * s, s * t.height]), np.column_stack([0 * s + t.width, s * t.height])])
-    mp = result.reference_to_map(result.model.apply(edge))
+    mp = result.reference_to_map(result.model.apply(raster_outline(t.width, t.height, 33, ends=True)))
     centre = as_xy([t.width / 2.0, t.height / 2.0])
     scale = math.sqrt(abs(np.linalg.det(local_jacobian(result.model, centre)[0])))  # ref px per target px
     target_px_size = ref.pixel_size * scale  # map units of one target pixel at the centre
