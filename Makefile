@@ -6,7 +6,7 @@ VENV := .venv
 QVENV := .venv-qgis
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := qgis python3-qgis qgis-providers python3-numpy python3-scipy python3-opencv python3-rasterio \
-	python3-pyproj python3-shapely python3-distributed python3-pytest python3-hypothesis python3-venv python3-setuptools python3-wheel gdal-bin \
+	python3-pyproj python3-shapely python3-distributed python3-cryptography python3-pytest python3-hypothesis python3-venv python3-setuptools python3-wheel gdal-bin \
 	qttools5-dev-tools pyqt5-dev-tools
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
@@ -23,11 +23,11 @@ lint: $(VENV)/.ok
 
 # Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL).
 test-wheels: $(VENV)/.ok
-	$(VENV)/bin/python -P -m pytest tests/core -q
+	$(VENV)/bin/python -P -m pytest tests/core -q -rs
 
 # Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...).
 test-debian: $(QVENV)/.ok
-	$(QVENV)/bin/python -P -m pytest tests -q -m "not packaging"
+	$(QVENV)/bin/python -P -m pytest tests -q -rs -m "not packaging"
 
 bench: $(VENV)/.ok
 	$(VENV)/bin/hamta bench
@@ -39,12 +39,14 @@ package:
 
 # The long fuzzing profile: 2,000 rasters per method family (and 2,000 parameter sets and reports), two
 # families at a time; outcomes are tallied from fuzz-output/*.jsonl at the end (hours on 2 cores).
+# FUZZ_EXAMPLES=200 gives a shorter run.
 FUZZ_FAMILIES := opencv rilbp sibrif sar structural phase auto inputs
+FUZZ_EXAMPLES ?= 2000
 fuzz: $(VENV)/.ok
 	@mkdir -p fuzz-output && rm -f fuzz-output/*.jsonl
-	@printf '%s\n' $(FUZZ_FAMILIES) | xargs -P 2 -I{} sh -c 'HYPOTHESIS_PROFILE=long HAMTA_FUZZ_FAMILY={} \
+	@printf '%s\n' $(FUZZ_FAMILIES) | xargs -P 2 -I{} sh -c 'HYPOTHESIS_PROFILE=long HAMTA_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) HAMTA_FUZZ_FAMILY={} \
 		HAMTA_FUZZ_LOG=fuzz-output/{}.jsonl $(VENV)/bin/python -P -m pytest tests/core/test_fuzz.py -q \
-		-k "$$( [ {} = inputs ] && echo "parameter or map_points" || echo any_raster )" > fuzz-output/{}.log 2>&1; \
+		-k "$$( [ {} = inputs ] && echo "parameter or map_points or georeferencing" || echo any_raster )" > fuzz-output/{}.log 2>&1; \
 		echo "fuzz {}: pytest exit $$? (fuzz-output/{}.log)"'
 	$(VENV)/bin/python tools/fuzz_summary.py fuzz-output/*.jsonl
 

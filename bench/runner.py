@@ -132,7 +132,9 @@ def run_case(spec: CaseSpec, config: BenchConfig) -> List[dict]:
     rows = []
     for method in config.methods:
         name, params, overrides = parse_variant(method)
-        options = RegisterOptions(**dict({"model": spec.model, "tolerance_px": case.tolerance_px}, **overrides))
+        # Benchmark pairs are judged in reference pixels, so a reference without georeferencing is fine.
+        options = RegisterOptions(**dict({"model": spec.model, "tolerance_px": case.tolerance_px, "pixel_mode": True},
+                                         **overrides))
         paths = OutputPaths.in_folder(os.path.join(folder, f"out-{_safe(method)}")) if floor else None
         result, error = None, None
         with PeakRss() as mem:

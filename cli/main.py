@@ -47,22 +47,29 @@ def cmd_register(args) -> int:
                                   progress=ProgressBar(not args.quiet), map_chunks=map_chunks)
     except UnverifiedResult as exc:
         print_result(exc.result, exc.written)
-        print(f"hamta: {exc}", file=sys.stderr)
+        print(f"hamta: {explain(exc)}", file=sys.stderr)
         return EXIT_UNVERIFIED
     print_result(result, written)
     return EXIT_OK if result.verified else EXIT_UNVERIFIED
 
 
+def explain(exc: HamtaError) -> str:
+    """The error's message, naming the option that lets the user go on as this command line spells it."""
+    return f"{exc} (--{exc.option.replace('_', '-')})." if exc.option else str(exc)
+
+
 def print_result(result, written) -> None:
     """What the run found: the attempts of 'auto', the verdict first, then the self-reported fit."""
-    from ..core.outputs.tags import verdict_text
+    from ..core.outputs.tags import counts_text, pixel_mode_text, verdict_text
 
     for a in (result.auto or {}).get("attempts", []):
         mark = "*" if a.get("accepted") else " "
         print(f"{mark} tried {a['method']}{_params(a['params'])}: {a['outcome']} ({a['time_s']:.1f} s) - {a['reason']}")
     print(f"result: {verdict_text(result)}")
+    if result.pixel_mode:
+        print(f"note: {pixel_mode_text()}")
     s = result.stats
-    print(f"method {result.method}, model {result.model.kind}: {s['n_gcps']} GCPs from {s['n_matches']} matches; "
+    print(f"method {result.method}, model {result.model.kind}: {counts_text(s)}; "
           f"self-reported RMSE {s['rmse_px']:.3f} px, RMS_LOO {_fmt(s['rms_loo_px'])} px; "
           f"{result.timings.get('auto_total', result.timings['total']):.2f} s")
     for name, path in written.items():
@@ -83,6 +90,8 @@ def cmd_batch(args) -> int:
     from ..core.batch.table import write_results
     from ..core.batch.task import BatchSettings
 
+    if args.workers is not None and args.workers < 1:
+        raise ValueError(f"--workers must be at least 1 (default: the CPU count), got {args.workers}")
     options, output = settings_from(args)
     jobs = read_jobs(args.source, args.out, args.reference)
     settings = BatchSettings(method=args.method, options=options, output=output,
@@ -223,7 +232,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     r = sub.add_parser("register", help="register a target raster onto a reference raster",
                        description="Register TARGET onto REFERENCE and write the georeferenced outputs into OUT.")
-    r.add_argument("--reference", required=True, help="georeferenced reference raster (its CRS is the map)")
+    r.add_argument("--reference", required=True, help="georeferenced reference raster (its CRS is the map; one "
+                                                      "without georeferencing needs --pixel-mode)")
     r.add_argument("--target", required=True, help="raster to georeference")
     r.add_argument("--out", required=True, help="output folder (created if missing)")
     r.add_argument("--method", default="auto",
@@ -233,15 +243,17 @@ def build_parser() -> argparse.ArgumentParser:
                    help="method parameter, repeatable (see 'hamta methods --verbose')")
     r.add_argument("--vrt", action="store_true", help="also write gcps.vrt (target + GCPs, no resampling)")
     _add_register_options(r, d, o)
-    r.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
+    r.add_argument("--scheduler", default=None, metavar="tls://HOST:PORT",
                    help="measure the local correction's windows on this Dask cluster (big scenes; its workers need "
-                        "Hamta and the paths); default: threads of this process")
+                        "Hamta and the paths); tls:// takes its certificates from Dask's configuration "
+                        "(distributed.comm.tls.*), tcp:// is unauthenticated; default: threads of this process")
     r.set_defaults(func=cmd_register)
 
     bt = sub.add_parser("batch", help="register many targets, in parallel on Dask (a local cluster or a scheduler)",
                         description="Register every pair of SOURCE: a job list (.csv or .gpkg with columns target, "
                                     "reference, method, model, output) or a folder/glob of targets registered onto "
-                                    "--reference. Each pair writes into its own folder under --out; a rerun skips "
+                                    "--reference. Each pair writes into its own folder under --out (a row's "
+                                    "output: a relative folder inside --out); a rerun skips "
                                     "pairs already done. Exit code: 0 all verified, 3 some not verified, 1 some "
                                     "failed.")
     bt.add_argument("source", help="job list (.csv/.gpkg), a folder of targets, or a glob pattern (quote it)")
@@ -250,10 +262,13 @@ def build_parser() -> argparse.ArgumentParser:
                                                       "or a VRT mosaic)")
     bt.add_argument("--method", default="auto", help="matching method of every pair (a job's own overrides it)")
     _add_register_options(bt, d, o)
-    bt.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
+    bt.add_argument("--scheduler", default=None, metavar="tls://HOST:PORT",
                     help="an existing Dask scheduler (workers need Hamta installed and access to the paths); "
-                         "default: a local cluster")
-    bt.add_argument("--workers", type=int, default=None, help="workers of the local cluster (default: CPU count)")
+                         "tls:// takes its certificates from Dask's configuration (distributed.comm.tls.ca-file, "
+                         ".client.cert, .client.key), tcp:// is unauthenticated; default: a local cluster on "
+                         "127.0.0.1 with TLS credentials of its own")
+    bt.add_argument("--workers", type=int, default=None,
+                    help="workers of the local cluster, at least 1 (default: CPU count)")
     bt.set_defaults(func=cmd_batch)
 
     m = sub.add_parser("map-points", help="map target pixels through the model stored in a report.json")
@@ -345,8 +360,12 @@ def _add_register_options(p, d, o) -> None:
                         f"bounds its error within this (default {d.tolerance_px:g})")
     p.add_argument("--accept-unverified", action="store_true",
                    help="write the outputs even when the result is not verified (the verdict is in every output)")
+    p.add_argument("--pixel-mode", action="store_true",
+                   help="pixel-to-pixel registration onto a reference without georeferencing: its pixel grid stands "
+                        "in for the map and the outputs carry no CRS (without this, such a reference is refused)")
     p.add_argument("--auto-budget", type=float, default=d.auto_budget_s,
-                   help=f"seconds after which 'auto' starts no further method (default {d.auto_budget_s:g})")
+                   help=f"seconds 'auto' may spend: then the method running is stopped (the first, the fast path, "
+                        f"always completes) and no further one starts (default {d.auto_budget_s:g})")
     p.add_argument("--local", action="store_true",
                    help="after the global model, correct local (non-rigid) misalignment from shifts measured on a "
                         "dense grid of windows; the model becomes a thin plate spline through the grid")
@@ -367,7 +386,8 @@ def settings_from(args):
                               max_gcps=args.max_gcps, target_georef=args.target_georef,
                               target_band=args.target_band, reference_band=args.reference_band,
                               tolerance_px=args.tolerance, auto_budget_s=args.auto_budget, local=args.local,
-                              local_window_px=args.local_window, local_spacing_px=args.local_spacing)
+                              local_window_px=args.local_window, local_spacing_px=args.local_spacing,
+                              pixel_mode=args.pixel_mode)
     output = OutputOptions(resampling=args.resampling, grid=args.grid, resolution=args.resolution, crs=args.crs,
                            format=args.format, creation_options=tuple(args.co), fill=args.fill, nodata=args.nodata)
     return options, output
@@ -396,7 +416,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         os.dup2(devnull, sys.stdout.fileno())
         return EXIT_OK
     except HamtaError as exc:
-        print(f"hamta: error: {exc}", file=sys.stderr)
+        print(f"hamta: error: {explain(exc)}", file=sys.stderr)
         return EXIT_ERROR
     except (ValueError, argparse.ArgumentTypeError) as exc:
         print(f"hamta: error: {exc}", file=sys.stderr)

@@ -22,7 +22,7 @@ from typing import Callable, List, Mapping
 
 import numpy as np
 
-from .errors import HamtaError, InputError, InsufficientMatchesError, RegistrationCanceled
+from .errors import DeadlineReached, HamtaError, InputError, InsufficientMatchesError, RegistrationCanceled
 from .progress import Monitor
 
 AUTO = "auto"
@@ -54,8 +54,10 @@ CHAIN = (
 def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
     """Try ``chain``'s steps in order; return the first verified result, else the best one.
 
-    ``options.auto_budget_s`` bounds the time: once spent, no further step starts. Raises
-    :class:`InsufficientMatchesError` (listing every attempt) when no step produced a model.
+    ``options.auto_budget_s`` is a deadline: once spent, the running step is stopped (at its next
+    progress report) and no further step starts. The first step is exempt, so that a budget shorter
+    than the fast path still gives a result. Raises :class:`InsufficientMatchesError` (listing
+    every attempt) when no step produced a model.
     """
     chain = CHAIN if chain is None else chain
     start = time.perf_counter()
@@ -70,11 +72,17 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
                                  time_s=0.0))
             continue
         t0 = time.perf_counter()
+        step_monitor = monitor.span(i / len(chain), (i + 1) / len(chain))
+        if i:
+            step_monitor = step_monitor.until(start + options.auto_budget_s)
         try:
-            result = attempt(step.method, dict(step.params), monitor.span(i / len(chain), (i + 1) / len(chain)),
-                             step.refine)
+            result = attempt(step.method, dict(step.params), step_monitor, step.refine)
         except (RegistrationCanceled, InputError):
             raise
+        except DeadlineReached:
+            attempts.append(dict(record, outcome="stopped", reason=f"time budget of {options.auto_budget_s:g} s spent",
+                                 time_s=round(time.perf_counter() - t0, 3)))
+            continue
         except (HamtaError, ValueError, ArithmeticError) as exc:
             attempts.append(dict(record, outcome="no model", reason=_first_line(exc),
                                  time_s=round(time.perf_counter() - t0, 3)))

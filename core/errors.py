@@ -6,7 +6,13 @@ problem. Front ends translate it once: the CLI prints it, Processing raises ``Qg
 
 
 class HamtaError(Exception):
-    """Root of every error Hamta raises for bad input or a registration that cannot be done."""
+    """Root of every error Hamta raises for bad input or a registration that cannot be done.
+
+    ``option`` names the setting (a :class:`hamta.core.options.RegisterOptions` field or a
+    ``run`` argument) that lets the user go on; each front end says how to set it in its own words.
+    """
+
+    option = None
 
 
 class InputError(HamtaError, ValueError):
@@ -19,6 +25,12 @@ class NoOverlapError(HamtaError):
 
 class GeoreferencingError(HamtaError):
     """A map is required but neither raster carries georeferencing."""
+
+
+class ReferenceNotGeoreferenced(GeoreferencingError):
+    """The reference has no georeferencing and pixel-to-pixel registration was not asked for."""
+
+    option = "pixel_mode"
 
 
 class InsufficientMatchesError(HamtaError):
@@ -39,10 +51,16 @@ class RegistrationCanceled(HamtaError):
     """The caller asked to stop; nothing was written."""
 
 
+class DeadlineReached(HamtaError):
+    """A step ran past the time it was given (``auto``'s budget); ``auto`` stops it and goes on."""
+
+
 class UnverifiedResult(HamtaError):
     """A model was found, but the independent check did not confirm it, so no georeferenced output
     was written (only the report, when one was asked for). ``result`` holds everything found;
     ``written`` what was written."""
+
+    option = "accept_unverified"
 
     def __init__(self, message: str, result, written=None):
         super().__init__(message)

@@ -23,11 +23,15 @@ def load_report_model(report_path: str):
         raise InputError(f"The report '{path}' does not exist.")
     if os.path.isdir(path):
         raise InputError(f"The report '{path}' is a folder, not a report.json file.")
+    if not os.path.isfile(path):
+        raise InputError(f"The report '{path}' is not a regular file (a pipe, socket or device).")
     try:
         with open(path, encoding="utf-8") as f:
             report = json.load(f)
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise InputError(f"The report '{path}' is not readable JSON ({exc}).") from None
+    except RecursionError:
+        raise InputError(f"The report '{path}' is not readable JSON (nested too deeply).") from None
     try:
         ref = report["reference"]
         transform = Affine.from_gdal(*[float(v) for v in ref["transform"]])

@@ -156,10 +156,15 @@ class RegisterOptions:
         The accuracy asked for, in reference pixels: a result is verified only when the independent
         check bounds its error within this (see :mod:`hamta.core.verify`).
     auto_budget_s : float
-        With method 'auto', no further method starts once this many seconds are spent.
+        With method 'auto', a deadline: once this many seconds are spent, the method running is
+        stopped at its next progress report (the first step always completes) and no further one starts.
     local : bool
         After the global model, correct local (non-rigid) misalignment from shifts measured on a
         dense grid of windows (:mod:`hamta.core.local`); the model becomes a thin plate spline.
+    pixel_mode : bool
+        Pixel-to-pixel registration: accept a reference without georeferencing, whose pixel grid
+        then stands in for the map (outputs carry no CRS). Off by default, so a reference that lost
+        its georeferencing is reported instead of silently giving outputs no GIS can place.
     local_window_px, local_spacing_px : int, float
         The local correction's window side and grid spacing (reference px). Window 0 = automatic:
         64 px where intensities are correlated, 96 px for structural descriptors (other modalities,
@@ -184,6 +189,7 @@ class RegisterOptions:
     local: bool = False
     local_window_px: int = 0
     local_spacing_px: float = 0.0
+    pixel_mode: bool = False
 
     def __post_init__(self):
         if self.model is not None:

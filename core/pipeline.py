@@ -15,9 +15,10 @@ from typing import Optional, Tuple
 
 from .auto import AUTO, register_auto
 from .coords import pixel_to_map
+from .errors import ReferenceNotGeoreferenced
 from .estimation.framed import CrsFrame
 from .estimation.robust import RobustRules, final_fit, robust_linear
-from .io.raster import RasterInfo, open_raster, resolve_bands
+from .io.raster import RasterInfo, check_on_earth, open_raster, resolve_bands
 from .io.working import Plan, WorkingImage, prepare_working_images
 from .local import LocalParams, local_correction
 from .methods import get_method
@@ -36,8 +37,8 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
     Parameters
     ----------
     target, reference : str or os.PathLike
-        Raster files. The reference defines the map (its CRS and geotransform), or, without
-        georeferencing, its pixel grid is the map.
+        Raster files. The reference defines the map (its CRS and geotransform); one without
+        georeferencing is refused unless ``options.pixel_mode``, and then its pixel grid is the map.
     method : str
         'auto' (methods from fast to robust until one's result verifies, see :mod:`hamta.core.auto`)
         or a name from :func:`hamta.core.methods.all_methods`.
@@ -95,6 +96,12 @@ def read_inputs(target, reference, options: RegisterOptions, monitor: Monitor) -
     """Open both rasters, choose their bands, plan the overlap and read the working images."""
     clock = Clock()
     tgt_info, ref_info = open_raster(target, "target"), open_raster(reference, "reference")
+    if not ref_info.georeferenced and not options.pixel_mode:
+        raise ReferenceNotGeoreferenced(
+            f"reference '{ref_info.path}' has no georeferencing (no geotransform or GCPs), so the result could not "
+            "be placed on a map. Use a georeferenced reference, or ask for pixel-to-pixel registration, whose "
+            "outputs are in the reference's pixels without a CRS")
+    check_on_earth(ref_info, "reference")
     bands = resolve_bands(tgt_info, options.target_band), resolve_bands(ref_info, options.reference_band)
     clock.lap("open")
     monitor.report(0.2, "reading")

@@ -4,7 +4,7 @@ from __future__ import annotations
 import time
 from typing import Callable, Optional
 
-from .errors import RegistrationCanceled
+from .errors import DeadlineReached, RegistrationCanceled
 
 ProgressFn = Callable[[float, str], None]
 CancelFn = Callable[[], bool]
@@ -39,16 +39,29 @@ class Monitor:
         """Whether the caller asked to stop (without raising)."""
         return self._is_canceled is not None and bool(self._is_canceled())
 
+    _deadline = None
+
     def check(self) -> None:
-        """Raise :class:`RegistrationCanceled` when the caller asked to stop."""
+        """Raise :class:`RegistrationCanceled` when the caller asked to stop, :class:`DeadlineReached`
+        when the deadline (see :meth:`until`) has passed."""
         if self.canceled():
             raise RegistrationCanceled("Registration canceled; no outputs were written.")
+        if self._deadline is not None and time.perf_counter() > self._deadline:
+            raise DeadlineReached("the time budget is spent")
+
+    def until(self, deadline: float) -> "Monitor":
+        """This monitor, also stopping (:class:`DeadlineReached`) once ``time.perf_counter()``
+        passes ``deadline``."""
+        monitor = Monitor(self._progress, self._is_canceled, self._start, self._stop)
+        monitor._deadline = deadline
+        return monitor
 
     def span(self, start: float, stop: float) -> "Monitor":
         """A child monitor covering [start, stop] of this monitor's span."""
         width = self._stop - self._start
-        return Monitor(self._progress, self._is_canceled,
-                       self._start + start * width, self._start + stop * width)
+        child = Monitor(self._progress, self._is_canceled, self._start + start * width, self._start + stop * width)
+        child._deadline = self._deadline
+        return child
 
 
 NULL_MONITOR = Monitor()

@@ -151,13 +151,29 @@ def make_gcps(fit: FinalFit, to_map) -> List[Gcp]:
     score first (disabled). ``to_map`` maps reference px to map coordinates."""
     p, res = fit.points, _residuals(fit)
     outliers = np.flatnonzero(~p.inlier)
-    outliers = outliers[np.argsort(-p.score[outliers], kind="stable")][: len(fit.used)]
+    outliers = _new_places(outliers[np.argsort(-p.score[outliers], kind="stable")], fit.used, p)[: len(fit.used)]
     gcps = []
     for i, enabled in [(i, True) for i in fit.used] + [(i, False) for i in outliers]:
         gcps.append(Gcp(tuple(map(float, p.target_px[i])), tuple(map(float, p.reference_px[i])),
                         tuple(map(float, to_map(p.reference_px[i:i + 1])[0])), tuple(map(float, res[i])),
                         float(p.score[i]), enabled))
     return gcps
+
+
+def _new_places(candidates: np.ndarray, taken: np.ndarray, p: Correspondences) -> np.ndarray:
+    """``candidates`` (in order) at a target and a reference pixel that no point of ``taken`` nor an
+    earlier candidate holds, so no place is listed twice."""
+    def key(xy, i):
+        return tuple(np.round(xy[i], 6))
+
+    seen = {key(xy, i) + (k,) for i in taken for k, xy in enumerate((p.target_px, p.reference_px))}
+    kept = []
+    for i in candidates:
+        places = {key(xy, i) + (k,) for k, xy in enumerate((p.target_px, p.reference_px))}
+        if not places & seen:
+            kept.append(i)
+            seen |= places
+    return np.asarray(kept, int)
 
 
 def make_stats(matches: Matches, first: Correspondences, fit: FinalFit) -> dict:

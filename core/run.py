@@ -63,7 +63,7 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
             written = write_outputs(result, OutputPaths(report=paths.report, html=paths.html, folder=paths.folder),
                                     output=output, is_canceled=is_canceled)
         raise UnverifiedResult(f"The registration of '{result.target.path}' is {verdict_text(result)}. No "
-                               "georeferenced output was written; accept unverified results to write it anyway.",
+                               "georeferenced output was written; accept unverified results to write it anyway",
                                result, written)
     written = write_outputs(result, paths, output=output, progress=lambda f, m: stage.report(f, m),
                             is_canceled=is_canceled)

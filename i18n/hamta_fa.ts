@@ -4,12 +4,12 @@
 <context>
     <name>BatchRegisterAlgorithm</name>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="61"/>
+        <location filename="../processing/batch_algorithm.py" line="57"/>
         <source>Batch register</source>
         <translation>ثبت دسته‌ای</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="64"/>
+        <location filename="../processing/batch_algorithm.py" line="60"/>
         <source>Registration</source>
         <translation>ثبت هندسی</translation>
     </message>
@@ -18,84 +18,98 @@
         <source>Registers many targets in one run: the rasters chosen as targets onto one reference, or every row of a job list (CSV or GeoPackage with columns target, reference, method, model, output). Pairs run in parallel on Dask (a local cluster inside QGIS, or an existing scheduler given as tcp://host:port). Each pair writes its outputs into its own folder under the output folder; a pair that fails is recorded and the others go on; running again skips the pairs already done. The result layer holds every target&apos;s footprint with its verdict, error figures, method, time and output paths.
 
 QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
-        <translation>چندین تصویر هدف را در یک اجرا ثبت می‌کند: رسترهای انتخاب‌شده به‌عنوان هدف روی یک مرجع، یا هر سطر از یک فهرست کار (CSV یا GeoPackage با ستون‌های target، reference، method، model و output). جفت‌ها به‌طور موازی روی Dask اجرا می‌شوند (یک خوشهٔ محلی درون QGIS، یا زمان‌بندی موجودی که با tcp://host:port داده می‌شود). هر جفت خروجی‌هایش را در پوشهٔ خودش زیر پوشهٔ خروجی می‌نویسد؛ جفتی که شکست بخورد ثبت می‌شود و بقیه ادامه می‌یابند؛ اجرای دوباره جفت‌های انجام‌شده را رد می‌کند. لایهٔ نتیجه ردپای هر تصویر هدف را با حکم بررسی، ارقام خطا، روش، زمان و مسیر خروجی‌ها نگه می‌دارد.
+        <translation type="obsolete">چندین تصویر هدف را در یک اجرا ثبت می‌کند: رسترهای انتخاب‌شده به‌عنوان هدف روی یک مرجع، یا هر سطر از یک فهرست کار (CSV یا GeoPackage با ستون‌های target، reference، method، model و output). جفت‌ها به‌طور موازی روی Dask اجرا می‌شوند (یک خوشهٔ محلی درون QGIS، یا زمان‌بندی موجودی که با tcp://host:port داده می‌شود). هر جفت خروجی‌هایش را در پوشهٔ خودش زیر پوشهٔ خروجی می‌نویسد؛ جفتی که شکست بخورد ثبت می‌شود و بقیه ادامه می‌یابند؛ اجرای دوباره جفت‌های انجام‌شده را رد می‌کند. لایهٔ نتیجه ردپای هر تصویر هدف را با حکم بررسی، ارقام خطا، روش، زمان و مسیر خروجی‌ها نگه می‌دارد.
 
 حالت دسته‌ای خود QGIS روی الگوریتم‌های تک‌جفتی نیز کار می‌کند.</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="80"/>
+        <location filename="../processing/batch_algorithm.py" line="81"/>
         <source>Target rasters</source>
         <translation>رسترهای هدف</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="82"/>
+        <location filename="../processing/batch_algorithm.py" line="83"/>
         <source>Reference raster (for the targets above)</source>
         <translation>رستر مرجع (برای هدف‌های بالا)</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="84"/>
+        <location filename="../processing/batch_algorithm.py" line="85"/>
         <source>Job list instead (CSV or GeoPackage: target, reference, method, model, output)</source>
         <translation>یا فهرست کار (CSV یا GeoPackage: target، reference، method، model، output)</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="84"/>
+        <location filename="../processing/batch_algorithm.py" line="85"/>
         <source>Job lists (*.csv *.gpkg)</source>
         <translation>فهرست‌های کار (*.csv *.gpkg)</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="87"/>
+        <location filename="../processing/batch_algorithm.py" line="88"/>
         <source>Method</source>
         <translation>روش</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="89"/>
+        <location filename="../processing/batch_algorithm.py" line="90"/>
         <source>Transformation</source>
         <translation>تبدیل</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="93"/>
+        <location filename="../processing/batch_algorithm.py" line="91"/>
         <source>Local (non-rigid) correction</source>
         <translation>اصلاح محلی (غیرصلب)</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="94"/>
+        <location filename="../processing/batch_algorithm.py" line="92"/>
         <source>Keep unverified results</source>
         <translation>نگه‌داشتن نتایج تأییدنشده</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="96"/>
+        <location filename="../processing/batch_algorithm.py" line="94"/>
         <source>Accuracy asked for (reference pixels)</source>
         <translation>دقت خواسته‌شده (پیکسل مرجع)</translation>
     </message>
     <message>
         <location filename="../processing/batch_algorithm.py" line="99"/>
         <source>Dask scheduler (tcp://host:port; empty: a local cluster)</source>
-        <translation>زمان‌بند Dask (tcp://host:port؛ خالی: یک خوشهٔ محلی)</translation>
+        <translation type="obsolete">زمان‌بند Dask (tcp://host:port؛ خالی: یک خوشهٔ محلی)</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="101"/>
+        <location filename="../processing/batch_algorithm.py" line="99"/>
         <source>Workers of the local cluster (0: one per CPU)</source>
         <translation>کارگرهای خوشهٔ محلی (۰: یکی برای هر پردازنده)</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="104"/>
+        <location filename="../processing/batch_algorithm.py" line="102"/>
         <source>Output folder</source>
         <translation>پوشهٔ خروجی</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="105"/>
+        <location filename="../processing/batch_algorithm.py" line="103"/>
         <source>Batch results (footprints)</source>
         <translation>نتایج دسته (ردپاها)</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="117"/>
+        <location filename="../processing/batch_algorithm.py" line="115"/>
         <source>Choose target rasters and a reference raster, or a job list.</source>
         <translation>رسترهای هدف و یک رستر مرجع، یا یک فهرست کار را انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="146"/>
+        <location filename="../processing/batch_algorithm.py" line="141"/>
         <source>Batch stopped on an unexpected error ({}: {}).</source>
         <translation>اجرای دسته با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {}).</translation>
+    </message>
+    <message>
+        <location filename="../processing/batch_algorithm.py" line="69"/>
+        <source>Registers many targets in one run: the rasters chosen as targets onto one reference, or every row of a job list (CSV or GeoPackage with columns target, reference, method, model, output). Pairs run in parallel on Dask: a local cluster of threads inside QGIS (reachable only with TLS credentials made for the run), or an existing scheduler given as tls://host:port, with the certificates of Dask&apos;s configuration (distributed.comm.tls.*; tcp:// works but is unauthenticated). Each pair writes its outputs into its own folder under the output folder (a job list&apos;s output: a folder inside it); a pair that fails is recorded and the others go on; running again skips the pairs already done. The result layer holds every target&apos;s footprint with its verdict, error figures, method, time and output paths.
+
+QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
+        <translation>چندین تصویر هدف را در یک اجرا ثبت می‌کند: رسترهای انتخاب‌شده به‌عنوان هدف روی یک مرجع، یا هر سطر از یک فهرست کار (CSV یا GeoPackage با ستون‌های target، reference، method، model و output). جفت‌ها به‌طور موازی روی Dask اجرا می‌شوند: یک خوشهٔ محلی از رشته‌ها درون QGIS (که فقط با اعتبارنامه‌های TLS ساخته‌شده برای همین اجرا در دسترس است)، یا زمان‌بندی موجودی که با tls://host:port داده می‌شود، با گواهی‌های پیکربندی Dask (distributed.comm.tls.*؛ tcp:// هم کار می‌کند اما بدون احراز هویت است). هر جفت خروجی‌هایش را در پوشهٔ خودش زیر پوشهٔ خروجی می‌نویسد (خروجی یک فهرست کار: پوشه‌ای درون آن)؛ جفتی که شکست بخورد ثبت می‌شود و بقیه ادامه می‌یابند؛ اجرای دوباره جفت‌های انجام‌شده را رد می‌کند. لایهٔ نتیجه ردپای هر تصویر هدف را با حکم بررسی، ارقام خطا، روش، زمان و مسیر خروجی‌ها نگه می‌دارد.
+
+حالت دسته‌ای خود QGIS روی الگوریتم‌های تک‌جفتی نیز کار می‌کند.</translation>
+    </message>
+    <message>
+        <location filename="../processing/batch_algorithm.py" line="97"/>
+        <source>Dask scheduler (tls://host:port; empty: a local cluster)</source>
+        <translation>زمان‌بند Dask (tls://host:port؛ خالی: یک خوشهٔ محلی)</translation>
     </message>
 </context>
 <context>
@@ -232,62 +246,62 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>نادیده گرفته شود</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="77"/>
+        <location filename="../processing/register_algorithm.py" line="118"/>
         <source>Registration</source>
         <translation>ثبت تصویر</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="86"/>
+        <location filename="../processing/register_algorithm.py" line="130"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation>زمین‌مرجع‌سازی,هم‌ثبت‌سازی,ثبت,نقطه کنترل,تطابق,هم‌ترازی,تبدیل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="97"/>
+        <location filename="../processing/register_algorithm.py" line="135"/>
         <source>Target raster (to georeference)</source>
         <translation>رستر هدف (برای زمین‌مرجع‌سازی)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="98"/>
+        <location filename="../processing/register_algorithm.py" line="136"/>
         <source>Reference raster</source>
         <translation>رستر مرجع</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="99"/>
+        <location filename="../processing/register_algorithm.py" line="137"/>
         <source>Transformation</source>
         <translation>تبدیل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="100"/>
+        <location filename="../processing/register_algorithm.py" line="138"/>
         <source>Resampling</source>
         <translation>بازنمونه‌برداری</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="116"/>
+        <location filename="../processing/register_algorithm.py" line="153"/>
         <source>Target band to match (empty: luminance of RGB, else band 1)</source>
         <translation>باند هدف برای تطابق (خالی: روشنایی RGB، وگرنه باند ۱)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="119"/>
+        <location filename="../processing/register_algorithm.py" line="156"/>
         <source>Reference band to match</source>
         <translation>باند مرجع برای تطابق</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="122"/>
+        <location filename="../processing/register_algorithm.py" line="159"/>
         <source>Target&apos;s own georeferencing</source>
         <translation>زمین‌مرجع موجود تصویر هدف</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="123"/>
+        <location filename="../processing/register_algorithm.py" line="160"/>
         <source>Output pixel grid</source>
         <translation>شبکه پیکسلی خروجی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="137"/>
+        <location filename="../processing/register_algorithm.py" line="174"/>
         <source>Full-resolution refinement</source>
         <translation>پالایش در تفکیک‌پذیری کامل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="138"/>
+        <location filename="../processing/register_algorithm.py" line="175"/>
         <source>Working image size (pixels)</source>
         <translation>اندازه تصویر کاری (پیکسل)</translation>
     </message>
@@ -297,72 +311,72 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="obsolete">آستانه RANSAC (پیکسل کاری)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="144"/>
+        <location filename="../processing/register_algorithm.py" line="181"/>
         <source>Maximum number of GCPs</source>
         <translation>بیشینه تعداد نقاط کنترل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="147"/>
+        <location filename="../processing/register_algorithm.py" line="184"/>
         <source>Random seed</source>
         <translation>بذر تصادفی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="153"/>
+        <location filename="../processing/register_algorithm.py" line="190"/>
         <source>Georeferenced raster</source>
         <translation>رستر زمین‌مرجع‌شده</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="191"/>
         <source>GCP points</source>
         <translation>نقاط کنترل زمینی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="156"/>
+        <location filename="../processing/register_algorithm.py" line="193"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation>پرونده نقاط کنترل برای Georeferencer کیوجی‌آی‌اس</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="156"/>
+        <location filename="../processing/register_algorithm.py" line="193"/>
         <source>GCP points (*.points)</source>
         <translation>نقاط کنترل (*.points)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="159"/>
+        <location filename="../processing/register_algorithm.py" line="196"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation>تصویر هدف همراه نقاط کنترل، بدون بازنمونه‌برداری (VRT)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="159"/>
+        <location filename="../processing/register_algorithm.py" line="196"/>
         <source>VRT (*.vrt)</source>
         <translation>VRT (*.vrt)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="162"/>
+        <location filename="../processing/register_algorithm.py" line="199"/>
         <source>Report</source>
         <translation>گزارش</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="162"/>
+        <location filename="../processing/register_algorithm.py" line="199"/>
         <source>JSON (*.json)</source>
         <translation>JSON (*.json)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="169"/>
+        <location filename="../processing/register_algorithm.py" line="206"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation>RMSE نقاط کنترل (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="170"/>
+        <location filename="../processing/register_algorithm.py" line="207"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation>RMS به روش حذف تک‌نقطه (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="171"/>
+        <location filename="../processing/register_algorithm.py" line="208"/>
         <source>Number of GCPs</source>
         <translation>تعداد نقاط کنترل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="201"/>
+        <location filename="../processing/register_algorithm.py" line="238"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation>{} باید پرونده رستری قابل خواندن با GDAL باشد، نه لایه‌ای از نوع «{}».</translation>
     </message>
@@ -372,7 +386,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="obsolete">نقاط کنترل باید در پرونده ژئوپکیج (.gpkg) نوشته شوند.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="281"/>
+        <location filename="../processing/register_algorithm.py" line="315"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation>ثبت تصویر لغو شد؛ هیچ خروجی‌ای نوشته نشد.</translation>
     </message>
@@ -382,12 +396,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="obsolete">{} نقطه کنترل از {} تطابق؛ RMSE برابر {:.3f} پیکسل، RMS حذف تک‌نقطه {} پیکسل.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="342"/>
+        <location filename="../processing/register_algorithm.py" line="386"/>
         <source>Register raster (SIFT baseline)</source>
         <translation>ثبت رستر (پایه SIFT)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="343"/>
+        <location filename="../processing/register_algorithm.py" line="387"/>
         <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.
 
 Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</source>
@@ -396,12 +410,12 @@ Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant ke
 مرجع: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="356"/>
+        <location filename="../processing/register_algorithm.py" line="400"/>
         <source>Register satellite image (RILBP, rotation-invariant)</source>
         <translation>ثبت تصویر ماهواره‌ای (RILBP، مستقل از دوران)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="357"/>
+        <location filename="../processing/register_algorithm.py" line="401"/>
         <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.
 
 Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</source>
@@ -410,12 +424,12 @@ Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary 
 مرجع: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="372"/>
+        <location filename="../processing/register_algorithm.py" line="416"/>
         <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
         <translation>ثبت تصویر هوایی روی تصویر ماهواره‌ای (SIBRIF، سریع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="373"/>
+        <location filename="../processing/register_algorithm.py" line="417"/>
         <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.
 
 Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
@@ -424,12 +438,12 @@ Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and sat
 مرجع: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="387"/>
+        <location filename="../processing/register_algorithm.py" line="431"/>
         <source>Register SAR image onto SAR image (ND-SIFT + phase congruency)</source>
         <translation>ثبت تصویر SAR روی تصویر SAR (ND-SIFT + همدوسی فاز)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="389"/>
+        <location filename="../processing/register_algorithm.py" line="433"/>
         <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.
 
 Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</source>
@@ -438,12 +452,12 @@ Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image
 مرجع: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="405"/>
+        <location filename="../processing/register_algorithm.py" line="449"/>
         <source>Register SAR image onto optical image</source>
         <translation>ثبت تصویر SAR روی تصویر نوری</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="406"/>
+        <location filename="../processing/register_algorithm.py" line="450"/>
         <source>Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale (up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method &apos;lines-spectral-faithful&apos; is the thesis&apos;s line-intersection matcher as written (Radon lines, eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register.
 
 References: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684</source>
@@ -454,70 +468,70 @@ References: S. Gholami (2018), Automatic registration of SAR images onto optical
     <message>
         <location filename="../processing/register_algorithm.py" line="101"/>
         <source>Keep unverified results (write the outputs even when the independent check does not confirm the registration)</source>
-        <translation>نگه‌داشتن نتایج تأییدنشده (نوشتن خروجی‌ها حتی وقتی بررسی مستقل، ثبت تصویر را تأیید نکند)</translation>
+        <translation type="obsolete">نگه‌داشتن نتایج تأییدنشده (نوشتن خروجی‌ها حتی وقتی بررسی مستقل، ثبت تصویر را تأیید نکند)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="113"/>
+        <location filename="../processing/register_algorithm.py" line="150"/>
         <source>Accuracy asked for (reference pixels): verified only within it</source>
         <translation>دقت خواسته‌شده (پیکسل مرجع): نتیجه فقط در همین حد تأیید می‌شود</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="141"/>
+        <location filename="../processing/register_algorithm.py" line="178"/>
         <source>RANSAC tolerance (working pixels; empty: the method&apos;s)</source>
         <translation>آستانه RANSAC (پیکسل کاری؛ خالی: مقدار پیش‌فرض روش)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="167"/>
+        <location filename="../processing/register_algorithm.py" line="204"/>
         <source>Verdict of the independent check</source>
         <translation>رأی بررسی مستقل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="168"/>
+        <location filename="../processing/register_algorithm.py" line="205"/>
         <source>Method that produced the result</source>
         <translation>روشی که نتیجه را به دست داد</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="284"/>
+        <location filename="../processing/register_algorithm.py" line="318"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation>ثبت تصویر تأیید نشد: {}. هیچ خروجی زمین‌مرجع‌شده‌ای نوشته نشد؛ برای نوشتن آن در هر صورت، گزینهٔ «نگه‌داشتن نتایج تأییدنشده» را فعال کنید.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="308"/>
+        <location filename="../processing/register_algorithm.py" line="350"/>
         <source>Tried {}: {} ({:.1f} s) - {}</source>
         <translation>روش {} آزموده شد: {} ({:.1f} s) - {}</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="314"/>
+        <location filename="../processing/register_algorithm.py" line="356"/>
         <source>Verified by an independent check: {} of {} sites agree; estimated error within {:.2f} px.</source>
         <translation>تأییدشده با بررسی مستقل: {} محل از {} محل هم‌خوان‌اند؛ خطای برآوردشده حداکثر {:.2f} px.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="317"/>
+        <location filename="../processing/register_algorithm.py" line="359"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation>تأیید نشد ({}): {}</translation>
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="319"/>
         <source>{} GCPs from {} matches; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
-        <translation>{} نقطه کنترل از {} تطابق؛ RMSE گزارش‌شده از خود برازش {:.3f} px، RMS حذف تک‌نقطه {} px (باقی‌مانده‌های برازش، نه دقت آن).</translation>
+        <translation type="obsolete">{} نقطه کنترل از {} تطابق؛ RMSE گزارش‌شده از خود برازش {:.3f} px، RMS حذف تک‌نقطه {} px (باقی‌مانده‌های برازش، نه دقت آن).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="327"/>
+        <location filename="../processing/register_algorithm.py" line="371"/>
         <source>Register raster (automatic)</source>
         <translation>ثبت رستر (خودکار)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="328"/>
+        <location filename="../processing/register_algorithm.py" line="372"/>
         <source>Registers the target raster onto the reference raster and chooses the method itself: the fast SIFT matcher first, then matchers for images of different modality (SAR, infrared, maps) and for SAR, until a result passes an independent check. The check compares the two rasters at sites spread over the overlap, not the matches the model was fitted on, against what wrong alignments of the same rasters give, and bounds the remaining error. A result that does not verify is not written unless &apos;Keep unverified results&apos; is set; the log lists every method tried, its verdict and its time. The other algorithms of this group run one method each, for experts.</source>
         <translation>رستر هدف را روی رستر مرجع ثبت می‌کند و روش را خودش برمی‌گزیند: ابتدا تناظریاب سریع SIFT، سپس تناظریاب‌های ویژهٔ تصاویر با مدالیتهٔ متفاوت (SAR، فروسرخ، نقشه) و ویژهٔ SAR، تا جایی که نتیجه‌ای از یک بررسی مستقل سربلند بیرون آید. این بررسی دو رستر را در محل‌هایی پراکنده در سراسر ناحیهٔ همپوشانی مقایسه می‌کند، نه روی تطابق‌هایی که مدل با آن‌ها برازش شده است، حاصل را با آنچه هم‌ترازی‌های نادرستِ همین رسترها به دست می‌دهند می‌سنجد و برای خطای باقی‌مانده کران تعیین می‌کند. نتیجه‌ای که تأیید نشود نوشته نمی‌شود، مگر اینکه گزینهٔ «نگه‌داشتن نتایج تأییدنشده» فعال باشد؛ گزارش اجرا همهٔ روش‌های آزموده‌شده را همراه با رأی و زمان هر کدام فهرست می‌کند. هر یک از دیگر الگوریتم‌های این گروه فقط یک روش را اجرا می‌کند و برای کاربران متخصص است.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="425"/>
+        <location filename="../processing/register_algorithm.py" line="469"/>
         <source>Register across modalities at any rotation and scale</source>
         <translation>ثبت میان مدالیته‌های مختلف با هر دوران و مقیاس</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="426"/>
+        <location filename="../processing/register_algorithm.py" line="470"/>
         <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.
 
 References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Processing 29:3296-3310; J. Li, Q. Hu and Y. Zhang (2023), Multimodal image matching: a scale-invariant algorithm and an open dataset, ISPRS Journal of Photogrammetry and Remote Sensing 204:77-88; Y. Ye et al. (2019), CFOG, IEEE TGRS 57(11):9059-9070.</source>
@@ -1113,7 +1127,7 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
     <message>
         <location filename="../processing/register_algorithm.py" line="104"/>
         <source>Local (non-rigid) correction: measure shifts on a dense grid of windows after the global model and warp with a thin plate spline through them</source>
-        <translation>اصلاح محلی (غیرصلب): پس از مدل سراسری، جابه‌جایی‌ها روی شبکه‌ای متراکم از پنجره‌ها اندازه‌گیری و تصویر با یک اسپلاین صفحهٔ نازک از میان آن‌ها تبدیل می‌شود</translation>
+        <translation type="obsolete">اصلاح محلی (غیرصلب): پس از مدل سراسری، جابه‌جایی‌ها روی شبکه‌ای متراکم از پنجره‌ها اندازه‌گیری و تصویر با یک اسپلاین صفحهٔ نازک از میان آن‌ها تبدیل می‌شود</translation>
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="107"/>
@@ -1121,62 +1135,62 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
         <translation type="obsolete">پنجرهٔ اصلاح محلی (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="110"/>
+        <location filename="../processing/register_algorithm.py" line="147"/>
         <source>Local correction grid spacing (reference pixels; 0: automatic)</source>
         <translation>فاصلهٔ شبکهٔ اصلاح محلی (پیکسل مرجع؛ ۰: خودکار)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="124"/>
+        <location filename="../processing/register_algorithm.py" line="161"/>
         <source>Output CRS (empty: the reference&apos;s)</source>
         <translation>سیستم مختصات خروجی (خالی: سیستم مختصات مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="126"/>
+        <location filename="../processing/register_algorithm.py" line="163"/>
         <source>Output pixel size in output CRS units (empty: from the pixel grid)</source>
         <translation>اندازهٔ پیکسل خروجی به واحد سیستم مختصات خروجی (خالی: از شبکهٔ پیکسل)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="129"/>
+        <location filename="../processing/register_algorithm.py" line="166"/>
         <source>Output format</source>
         <translation>قالب خروجی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="130"/>
+        <location filename="../processing/register_algorithm.py" line="167"/>
         <source>GDAL creation options (KEY=VALUE, separated by spaces)</source>
         <translation>گزینه‌های ساخت GDAL (KEY=VALUE، جداشده با فاصله)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="133"/>
+        <location filename="../processing/register_algorithm.py" line="170"/>
         <source>Pixels outside the target</source>
         <translation>پیکسل‌های بیرون از هدف</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="134"/>
+        <location filename="../processing/register_algorithm.py" line="171"/>
         <source>Nodata value (with &apos;Nodata value&apos; above; empty: the target&apos;s, else 0)</source>
         <translation>مقدار بی‌داده (با گزینهٔ «مقدار بی‌داده» در بالا؛ خالی: مقدار هدف، وگرنه ۰)</translation>
     </message>
     <message>
         <location filename="../processing/register_algorithm.py" line="164"/>
         <source>Quality report (pictures of the GCPs, residuals, overlay and check)</source>
-        <translation>گزارش کیفیت (تصویرهای نقاط کنترل، باقیمانده‌ها، هم‌پوشانی و بررسی)</translation>
+        <translation type="obsolete">گزارش کیفیت (تصویرهای نقاط کنترل، باقیمانده‌ها، هم‌پوشانی و بررسی)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="164"/>
+        <location filename="../processing/register_algorithm.py" line="201"/>
         <source>HTML files (*.html)</source>
         <translation>پرونده‌های HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="267"/>
+        <location filename="../processing/register_algorithm.py" line="305"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation>نقاط کنترل در یک GeoPackage نوشته می‌شوند: یک پروندهٔ ‎.gpkg انتخاب کنید (داده‌شده: «{}»).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="290"/>
+        <location filename="../processing/register_algorithm.py" line="324"/>
         <source>Invalid parameter: {}</source>
         <translation>پارامتر نامعتبر: {}</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="292"/>
+        <location filename="../processing/register_algorithm.py" line="326"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation>همتا با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {})؛ هیچ خروجی‌ای نوشته نشد. لطفاً آن را گزارش کنید.</translation>
     </message>
@@ -1216,7 +1230,7 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
         <translation>خودکار (مقدار بی‌دادهٔ هدف، NaN برای اعداد اعشاری، وگرنه یک باند آلفا)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="107"/>
+        <location filename="../processing/register_algorithm.py" line="144"/>
         <source>Local correction window (reference pixels; 0: automatic)</source>
         <translation>پنجرهٔ اصلاح محلی (پیکسل مرجع؛ ۰: خودکار)</translation>
     </message>
@@ -1259,6 +1273,36 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
         <location filename="core_strings.py" line="22"/>
         <source>Third quartile</source>
         <translation>چارک سوم</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="139"/>
+        <source>Keep unverified results</source>
+        <translation>نگه‌داشتن نتایج تأییدنشده</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="141"/>
+        <source>Local (non-rigid) correction</source>
+        <translation>اصلاح محلی (غیرصلب)</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="142"/>
+        <source>Pixel-to-pixel (reference not georeferenced)</source>
+        <translation>پیکسل به پیکسل (مرجع بدون زمین‌مرجع)</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="201"/>
+        <source>Quality report (HTML)</source>
+        <translation>گزارش کیفیت (HTML)</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="346"/>
+        <source>{} (set &apos;{}&apos;).</source>
+        <translation>{} (گزینهٔ «{}» را فعال کنید).</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="363"/>
+        <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
+        <translation>{}؛ RMSE گزارش‌شده از خود برازش {:.3f} px، RMS حذف تک‌نقطه {} px (باقی‌مانده‌های برازش، نه دقت آن).</translation>
     </message>
 </context>
 </TS>

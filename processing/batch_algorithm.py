@@ -22,12 +22,14 @@ from ..core import OutputOptions, RegisterOptions
 from ..core.auto import AUTO
 from ..core.batch import read_jobs, run_batch
 from ..core.batch.jobs import jobs_for_targets
+from ..core.batch.runner import unauthenticated_warning
 from ..core.batch.table import write_results
 from ..core.batch.task import BatchSettings
 from ..core.errors import HamtaError
 from ..core.methods import all_methods
 from ..core.options import MODEL
-from .register_algorithm import advanced, enum_parameter, feedback_progress
+from .help import help_url
+from .register_algorithm import PlainNumbers, advanced, enum_parameter, feedback_progress
 
 _CONTEXT = "BatchRegisterAlgorithm"
 
@@ -37,7 +39,7 @@ def batch_methods():
     return [AUTO] + [m.name for m in sorted(all_methods().values(), key=lambda m: (m.menu_rank, m.name))]
 
 
-class BatchRegisterAlgorithm(QgsProcessingAlgorithm):
+class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
     JOBS, TARGETS, REFERENCE, OUTPUT_FOLDER = "JOBS", "TARGETS", "REFERENCE", "OUTPUT_FOLDER"
     METHOD, MODEL, LOCAL, TOLERANCE, KEEP_UNVERIFIED = "METHOD", "MODEL", "LOCAL", "TOLERANCE", "KEEP_UNVERIFIED"
     SCHEDULER, WORKERS, RESULTS = "SCHEDULER", "WORKERS", "RESULTS"
@@ -60,14 +62,19 @@ class BatchRegisterAlgorithm(QgsProcessingAlgorithm):
     def groupId(self):
         return "registration"
 
+    def helpUrl(self):
+        return help_url(self)
+
     def shortHelpString(self):
         return self.tr(
             "Registers many targets in one run: the rasters chosen as targets onto one reference, or every row of a "
             "job list (CSV or GeoPackage with columns target, reference, method, model, output). Pairs run in "
-            "parallel on Dask (a local cluster inside QGIS, or an existing scheduler given as tcp://host:port). "
-            "Each pair writes its outputs into its own folder under the output folder; a pair that fails is "
-            "recorded and the others go on; running again skips the pairs already done. The result layer holds "
-            "every target's footprint with its verdict, error figures, method, time and output paths.\n\n"
+            "parallel on Dask: a local cluster of threads inside QGIS (reachable only with TLS credentials made "
+            "for the run), or an existing scheduler given as tls://host:port, with the certificates of Dask's "
+            "configuration (distributed.comm.tls.*; tcp:// works but is unauthenticated). Each pair writes its "
+            "outputs into its own folder under the output folder (a job list's output: a folder inside it); a pair "
+            "that fails is recorded and the others go on; running again skips the pairs already done. The result "
+            "layer holds every target's footprint with its verdict, error figures, method, time and output paths.\n\n"
             "QGIS's own batch mode over the single-pair algorithms works too.")
 
     def initAlgorithm(self, config=None):
@@ -88,7 +95,7 @@ class BatchRegisterAlgorithm(QgsProcessingAlgorithm):
             self.TOLERANCE, self.tr("Accuracy asked for (reference pixels)"), QgsProcessingParameterNumber.Double,
             RegisterOptions().tolerance_px, minValue=0.01)))
         self.addParameter(advanced(QgsProcessingParameterString(
-            self.SCHEDULER, self.tr("Dask scheduler (tcp://host:port; empty: a local cluster)"), "", optional=True)))
+            self.SCHEDULER, self.tr("Dask scheduler (tls://host:port; empty: a local cluster)"), "", optional=True)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
             self.WORKERS, self.tr("Workers of the local cluster (0: one per CPU)"),
             QgsProcessingParameterNumber.Integer, 0, minValue=0)))
@@ -119,6 +126,9 @@ class BatchRegisterAlgorithm(QgsProcessingAlgorithm):
         scheduler = self.parameterAsString(parameters, self.SCHEDULER, context).strip() or None
         workers = self.parameterAsInt(parameters, self.WORKERS, context) or None
 
+        warning = unauthenticated_warning(scheduler)
+        if warning:
+            feedback.reportError(warning)
         progress = feedback_progress(feedback)
         try:
             jobs = self._jobs(parameters, context, out)

@@ -63,6 +63,7 @@ def register_settings(values: Mapping[str, Any]):
         local=bool(values.get("LOCAL")),
         local_window_px=int(values.get("LOCAL_WINDOW") or 0),
         local_spacing_px=float(values.get("LOCAL_SPACING") or 0.0),
+        pixel_mode=bool(values.get("PIXEL_MODE")),
     )
     gpkg, layer = vector_destination(values.get("GCP_LAYER") or "")
     paths = OutputPaths(raster=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,

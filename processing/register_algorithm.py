@@ -28,6 +28,8 @@ from ..core.auto import AUTO
 from ..core.errors import HamtaError, RegistrationCanceled
 from ..core.methods import get_method
 from ..core.options import resolve_options
+from ..core.outputs.tags import counts_text, pixel_mode_text
+from .help import help_url
 from .mapping import ENUMS, method_parameter_name, method_values, register_settings
 
 _CONTEXT = "RegisterAlgorithm"  # every string below is translated in this context
@@ -47,16 +49,36 @@ def enum_parameter(name, description, default=None):
                                       defaultValue=choice.index(default or choice.default))
 
 
+def decimals(value) -> int:
+    """Decimals a spin box shows for a default ``value``: its own, at least 2 (QGIS shows 6: '3.000000')."""
+    text = f"{float(value):.6f}".rstrip("0")
+    return min(6, max(2, len(text.split(".")[1])))
+
+
 def feedback_progress(feedback):
-    """A ``progress(fraction, message)`` callback reporting to Processing ``feedback``."""
+    """A ``progress(fraction, message)`` callback reporting to Processing ``feedback``; each stage's
+    message is logged once, not at every step of it."""
+    last = [None]
+
     def progress(fraction, message):
         feedback.setProgress(100.0 * fraction)
-        if message:
+        if message and message != last[0]:
+            last[0] = message
             feedback.setProgressText(message)
     return progress
 
 
-class RegisterAlgorithm(QgsProcessingAlgorithm):
+class PlainNumbers:
+    """Mixed into an algorithm: its decimal parameters show their defaults as written ('3.00')."""
+
+    def addParameter(self, p, createOutput=True):
+        if isinstance(p, QgsProcessingParameterNumber) and p.dataType() == QgsProcessingParameterNumber.Double \
+                and p.defaultValue() is not None:
+            p.setMetadata({"widget_wrapper": {"decimals": decimals(p.defaultValue())}})
+        return super().addParameter(p, createOutput)
+
+
+class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
     """Base class: subclasses set ``METHOD``, ``ALG_NAME``, ``DISPLAY_NAME`` and ``HELP``."""
 
     METHOD = ""
@@ -74,6 +96,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
     OUTPUT_HTML, OUTPUT_CRS, RESOLUTION, FORMAT = "OUTPUT_HTML", "OUTPUT_CRS", "RESOLUTION", "FORMAT"
     CREATION_OPTIONS, FILL, NODATA = "CREATION_OPTIONS", "FILL", "NODATA"
     LOCAL, LOCAL_WINDOW, LOCAL_SPACING = "LOCAL", "LOCAL_WINDOW", "LOCAL_SPACING"
+    PIXEL_MODE = "PIXEL_MODE"
 
     def method(self):
         """The registered method this algorithm runs (None for 'auto', which chooses among them)."""
@@ -100,6 +123,9 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
     def shortHelpString(self):
         return self.tr(self.HELP)
 
+    def helpUrl(self):
+        return help_url(self)
+
     def tags(self):
         return self.tr("georeference,coregistration,registration,GCP,match,align,warp").split(",")
 
@@ -111,11 +137,10 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         self.addParameter(enum_parameter(self.MODEL, self.tr("Transformation"), d.model))
         self.addParameter(enum_parameter(self.RESAMPLING, self.tr("Resampling")))
         self.addParameter(QgsProcessingParameterBoolean(
-            self.KEEP_UNVERIFIED, self.tr("Keep unverified results (write the outputs even when the independent check "
-                                          "does not confirm the registration)"), False))
-        self.addParameter(QgsProcessingParameterBoolean(
-            self.LOCAL, self.tr("Local (non-rigid) correction: measure shifts on a dense grid of windows after the "
-                                "global model and warp with a thin plate spline through them"), False))
+            self.KEEP_UNVERIFIED, self.tr("Keep unverified results"), False))
+        self.addParameter(QgsProcessingParameterBoolean(self.LOCAL, self.tr("Local (non-rigid) correction"), False))
+        self.addParameter(advanced(QgsProcessingParameterBoolean(
+            self.PIXEL_MODE, self.tr("Pixel-to-pixel (reference not georeferenced)"), False)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
             self.LOCAL_WINDOW, self.tr("Local correction window (reference pixels; 0: automatic)"),
             QgsProcessingParameterNumber.Integer, d.local_window_px, minValue=0)))
@@ -174,7 +199,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
         self.addParameter(QgsProcessingParameterFileDestination(
             self.REPORT, self.tr("Report"), self.tr("JSON (*.json)"), optional=True, createByDefault=False))
         self.addParameter(QgsProcessingParameterFileDestination(
-            self.OUTPUT_HTML, self.tr("Quality report (pictures of the GCPs, residuals, overlay and check)"),
+            self.OUTPUT_HTML, self.tr("Quality report (HTML)"),
             self.tr("HTML files (*.html)"), optional=True, createByDefault=True))
         self.addOutput(QgsProcessingOutputString("VERDICT", self.tr("Verdict of the independent check")))
         self.addOutput(QgsProcessingOutputString("METHOD", self.tr("Method that produced the result")))
@@ -244,6 +269,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
             self.LOCAL: self.parameterAsBoolean(parameters, self.LOCAL, context),
             self.LOCAL_WINDOW: self.parameterAsInt(parameters, self.LOCAL_WINDOW, context),
             self.LOCAL_SPACING: self.parameterAsDouble(parameters, self.LOCAL_SPACING, context),
+            self.PIXEL_MODE: self.parameterAsBoolean(parameters, self.PIXEL_MODE, context),
         }
         for f in self._fields():
             key = method_parameter_name(f.name)
@@ -293,7 +319,7 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
                 "The registration was not verified: {}. No georeferenced output was written; set 'Keep unverified "
                 "results' to write it anyway.").format("; ".join(exc.result.verification.reasons))) from None
         except HamtaError as exc:
-            raise QgsProcessingException(str(exc)) from None
+            raise QgsProcessingException(self.explain(exc)) from None
         except ValueError as exc:
             raise QgsProcessingException(self.tr("Invalid parameter: {}").format(exc)) from None
         except Exception as exc:  # a bug: a clear message, never a raw traceback in the dialog
@@ -311,6 +337,14 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
                    "N_GCPS": s["n_gcps"], "VERDICT": result.verification.verdict, "METHOD": result.method}
         return {k: v for k, v in results.items() if v is not None}
 
+    def explain(self, exc):
+        """The error's message, naming the parameter that lets the user go on as this dialog shows it."""
+        names = {"pixel_mode": self.PIXEL_MODE, "accept_unverified": self.KEEP_UNVERIFIED}
+        if exc.option not in names:
+            return str(exc)
+        definition = self.parameterDefinition(names[exc.option])
+        return self.tr("{} (set '{}').").format(exc, definition.description())
+
     def _log(self, result, feedback):
         for a in (result.auto or {}).get("attempts", []):
             feedback.pushInfo(self.tr("Tried {}: {} ({:.1f} s) - {}").format(a["method"], a["outcome"], a["time_s"],
@@ -323,10 +357,12 @@ class RegisterAlgorithm(QgsProcessingAlgorithm):
                                       "{:.2f} px.").format(v.n_agree, v.n_sites, v.error_bound_px))
         else:
             feedback.reportError(self.tr("NOT VERIFIED ({}): {}").format(v.verdict, "; ".join(v.reasons)))
+        if result.pixel_mode:
+            feedback.pushWarning(pixel_mode_text())
         s = result.stats
-        feedback.pushInfo(self.tr("{} GCPs from {} matches; self-reported RMSE {:.3f} px, leave-one-out RMS {} px "
-                                  "(residuals of the fit, not its accuracy).").format(
-            s["n_gcps"], s["n_matches"], s["rmse_px"], "n/a" if s["rms_loo_px"] is None else f"{s['rms_loo_px']:.3f}"))
+        feedback.pushInfo(self.tr("{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, "
+                                  "not its accuracy).").format(
+            counts_text(s), s["rmse_px"], "n/a" if s["rms_loo_px"] is None else f"{s['rms_loo_px']:.3f}"))
 
 
 class RegisterAutoAlgorithm(RegisterAlgorithm):

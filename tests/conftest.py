@@ -10,10 +10,26 @@ REPO = pathlib.Path(__file__).resolve().parents[1]
 SHARED = pathlib.Path(os.environ.get("HAMTA_SHARED", REPO.parent / "shared"))
 
 
+MISSING_DATA = f"development data not found at {SHARED}/data (set HAMTA_SHARED)"
+# CI sets this: there a missing data folder is a broken set-up, not a reason to skip.
+REQUIRE_DATA = os.environ.get("HAMTA_REQUIRE_DATA") == "1"
+
+
+def pytest_configure(config):
+    if REQUIRE_DATA and not (SHARED / "data").is_dir():
+        raise pytest.UsageError(f"{MISSING_DATA}; HAMTA_REQUIRE_DATA=1 forbids skipping the tests that need it")
+
+
+def pytest_terminal_summary(terminalreporter):
+    if not (SHARED / "data").is_dir():
+        skipped = len(terminalreporter.stats.get("skipped", []))
+        terminalreporter.write_line(f"hamta: {MISSING_DATA}; {skipped} tests skipped", yellow=True, bold=True)
+
+
 @pytest.fixture(scope="session")
 def shared() -> pathlib.Path:
     if not (SHARED / "data").is_dir():
-        pytest.skip(f"development data not found at {SHARED}/data (set HAMTA_SHARED)")
+        pytest.skip(MISSING_DATA)
     return SHARED
 
 

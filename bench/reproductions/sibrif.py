@@ -50,10 +50,11 @@ def aerial_case(folder: str, data_dir: str, angle: float = 25.0, reference_scale
 
 def _register(case, method):
     from ...core.errors import HamtaError
+    from ...core.options import RegisterOptions
     from ...core.pipeline import register
 
     try:
-        r = register(case.target, case.reference, method)
+        r = register(case.target, case.reference, method, options=RegisterOptions(pixel_mode=True))
     except HamtaError as exc:
         corr = getattr(exc, "correspondences", None)
         return None, corr

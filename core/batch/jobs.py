@@ -1,10 +1,11 @@
 """What a batch registers: one :class:`Job` per target/reference pair.
 
 Sources: a CSV file or a GeoPackage table with a ``target`` column and optional ``reference``,
-``method``, ``model`` and ``output`` columns (rasters relative to the list's folder, a relative
-``output`` folder under ``out``); or a folder or glob pattern of targets, all registered onto one
-reference (a raster or a VRT mosaic). A job without its own output folder gets
-``<out>/<target name>`` (made unique when names repeat).
+``method``, ``model`` and ``output`` columns (rasters relative to the list's folder); or a folder or
+glob pattern of targets, all registered onto one reference (a raster or a VRT mosaic). A row's
+``output`` is a folder inside ``out``, relative to it: an absolute path, a ``..`` that leaves
+``out``, or two rows with the same folder are refused before any work. A job without its own output
+folder gets ``<out>/<target name>`` (made unique when names repeat or another row uses it).
 """
 from __future__ import annotations
 
@@ -66,7 +67,9 @@ def jobs_for_targets(targets: List[str], reference: str, out: str) -> List[Job]:
 
 def _jobs(rows: list, base: str, out: str, reference: Optional[str], source: str) -> List[Job]:
     """Jobs from ``rows`` (dicts of the list's columns), rasters relative to ``base``."""
-    jobs, used = [], set()
+    root = os.path.abspath(out)
+    outputs = _outputs(rows, root, source)
+    jobs, used = [], set(outputs.values())
     for i, row in enumerate(rows, start=1):
         target = _path(row.get("target"), base)
         if not target:
@@ -74,18 +77,52 @@ def _jobs(rows: list, base: str, out: str, reference: Optional[str], source: str
         ref = _path(row.get("reference"), base) or (os.path.abspath(reference) if reference else None)
         if not ref:
             raise InputError(f"Row {i} of {source} has no reference, and no --reference was given.")
-        folder = _path(row.get("output"), os.path.abspath(out)) or _unique(os.path.join(os.path.abspath(out),
-                                                                                           _stem(target)), used)
+        folder = outputs.get(i) or _unique(os.path.join(root, _stem(target)), used)
         used.add(folder)
         jobs.append(Job(target, ref, folder, (row.get("method") or "").strip() or None,
                         (row.get("model") or "").strip() or None))
     return jobs
 
 
+def _outputs(rows: list, root: str, source: str) -> dict:
+    """The output folder of each row (numbered from 1) that names one; each inside ``root``, and
+    no two the same."""
+    folders, row_of = {}, {}
+    for i, row in enumerate(rows, start=1):
+        value = row.get("output")
+        value = value.strip() if isinstance(value, str) else ""
+        if not value:
+            continue
+        folder = os.path.normpath(os.path.join(root, value))
+        if os.path.isabs(value) or not _inside(folder, root):
+            raise InputError(f"Row {i} of {source}: the output '{value}' is not a folder inside the output folder "
+                             f"'{root}' (give a relative path, without '..' leaving it).")
+        if folder in row_of:
+            raise InputError(f"Rows {row_of[folder]} and {i} of {source} have the same output folder '{folder}'; "
+                             "each pair needs its own.")
+        folders[i], row_of[folder] = folder, i
+    return folders
+
+
+def _inside(folder: str, root: str) -> bool:
+    try:
+        return folder != root and os.path.commonpath([folder, root]) == root
+    except ValueError:  # another drive
+        return False
+
+
 def _csv_rows(path: str) -> list:
+    rows = []
     try:
         with open(path, newline="", encoding="utf-8-sig") as f:
-            rows = [{(k or "").strip().lower(): (v or "").strip() for k, v in r.items()} for r in csv.DictReader(f)]
+            reader = csv.DictReader(f)
+            for r in reader:
+                if None in r:
+                    raise InputError(f"Row {len(rows) + 1} (line {reader.line_num}) of the job list '{path}' has "
+                                     f"{len(reader.fieldnames) + len(r[None])} fields, more than the "
+                                     f"{len(reader.fieldnames)} columns of its header (quote a value that holds a "
+                                     "comma).")
+                rows.append({(k or "").strip().lower(): (v or "").strip() for k, v in r.items()})
     except (OSError, UnicodeDecodeError, csv.Error) as exc:
         raise InputError(f"The job list '{path}' could not be read as CSV ({exc}).") from None
     if rows and "target" not in rows[0]:

@@ -1,12 +1,19 @@
 """Schedule a batch's pairs on Dask distributed and gather their records.
 
 By default a ``LocalCluster`` sized to the machine (one single-threaded worker process per core:
-the registration itself uses native threads where it pays); with ``scheduler`` an existing cluster
-(``tcp://host:port``), whose workers need the installed package and access to the paths. Each pair
-is one task (:func:`hamta.core.batch.task.register_job`); a pair that fails is recorded, never stops
-the batch; a worker that dies has its pairs run again elsewhere (Dask's own rescheduling), and since
-outputs are published whole, nothing half-written is left. Pairs already finished in an earlier run
-are taken from their folders without scheduling them (resumable).
+the registration itself uses native threads where it pays). Its scheduler, nanny and worker
+listeners are on 127.0.0.1 only and speak TLS with credentials made for that cluster and held in
+memory (mutual authentication: a process without them can neither connect nor submit work), and it
+has no dashboard. With ``scheduler`` an existing cluster: ``tls://host:port`` with the client
+credentials of Dask's own configuration (``distributed.comm.tls.ca-file``,
+``distributed.comm.tls.client.cert``, ``distributed.comm.tls.client.key``), or ``tcp://host:port``,
+which is unauthenticated and logged as such; its workers need the installed package and access to
+the paths. A scheduler that does not answer within ``CONNECT_TIMEOUT_S`` raises
+:class:`SchedulerError`. Each pair is one task (:func:`hamta.core.batch.task.register_job`); a pair
+that fails is recorded, never stops the batch; a worker that dies has its pairs run again elsewhere
+(Dask's own rescheduling), and since outputs are published whole, nothing half-written is left.
+Pairs already finished in an earlier run are taken from their folders without scheduling them
+(resumable).
 """
 from __future__ import annotations
 
@@ -17,10 +24,17 @@ import uuid
 from dataclasses import dataclass, field
 from typing import Callable, List, Optional
 
-from ..errors import RegistrationCanceled
+from ..errors import HamtaError, InputError, RegistrationCanceled
 from ..progress import Monitor
 from .jobs import Job
 from .task import BatchSettings, failed_record, finished_record, register_job
+
+CONNECT_TIMEOUT_S = 5
+logger = logging.getLogger(__name__)
+
+
+class SchedulerError(HamtaError):
+    """The Dask scheduler cannot be reached, or this client has no credentials for it."""
 
 
 @dataclass(frozen=True)
@@ -53,6 +67,8 @@ def run_batch(jobs: List[Job], settings: BatchSettings = BatchSettings(), *, sch
               is_canceled: Optional[Callable] = None) -> BatchResult:
     """Register every job; see the module docstring. ``workers`` sizes the local cluster (default:
     the CPU count); ``processes=False`` runs its workers as threads of this process (inside QGIS)."""
+    if workers is not None and workers < 1:
+        raise ValueError(f"workers must be a whole number of at least 1 (default: the CPU count), got {workers!r}")
     monitor = Monitor(progress, is_canceled)
     t0 = time.perf_counter()
     records = {j.key: finished_record(j, settings) for j in jobs}
@@ -75,7 +91,7 @@ def run_batch(jobs: List[Job], settings: BatchSettings = BatchSettings(), *, sch
 
 
 class scheduler_map:
-    """``with scheduler_map("tcp://host:port") as map_chunks:`` a ``map_chunks(fn, chunks)`` for
+    """``with scheduler_map("tls://host:port") as map_chunks:`` a ``map_chunks(fn, chunks)`` for
     :func:`hamta.core.register` that measures a big scene's local-correction windows on a cluster."""
 
     def __init__(self, scheduler: str):
@@ -111,7 +127,7 @@ def _gather(client, todo: List[Job], settings: BatchSettings, monitor: Monitor, 
         except TimeoutError:  # nothing finished in the last half second: look for a cancel again
             continue
         for fut in finished:
-            record = _result(fut, futures[fut])
+            record = _result(fut, futures[fut], settings)
             failed += record["status"] == "failed"
             done += 1
             left = (time.perf_counter() - started) / max(done - (total - len(todo)), 1) * len(pending)
@@ -119,11 +135,20 @@ def _gather(client, todo: List[Job], settings: BatchSettings, monitor: Monitor, 
             yield record
 
 
-def _result(future, job: Job) -> dict:
+def _result(future, job: Job, settings: BatchSettings) -> dict:
     try:
         return future.result()
     except Exception as exc:  # the task itself never raises: a lost worker, a cancellation, a pickling error
-        return failed_record(job, job.method or "", 0.0, f"{type(exc).__name__}: {exc}".strip())
+        return failed_record(job, job.method or settings.method, 0.0, f"{type(exc).__name__}: {exc}".strip())
+
+
+def unauthenticated_warning(scheduler: Optional[str]) -> Optional[str]:
+    """What to tell the user about a scheduler address other than ``tls://`` (None for ``tls://``)."""
+    scheme = scheduler.split("://")[0].lower() if scheduler and "://" in scheduler else "tcp"
+    if not scheduler or scheme == "tls":
+        return None
+    return (f"Warning: the Dask scheduler {scheduler} is unauthenticated ({scheme}://): anyone who can reach it can "
+            "run code as its workers' user. Use tls://HOST:PORT with certificates (see README).")
 
 
 class _client:
@@ -133,19 +158,15 @@ class _client:
         self.scheduler, self.workers, self.processes = scheduler, workers, processes
 
     def __enter__(self):
-        try:
-            from distributed import Client, LocalCluster
-        except ImportError:
-            from ..errors import InputError
-
+        if not _dask_installed():
             raise InputError("Batches run on Dask distributed, which is not installed (pip install distributed; "
-                             "Debian: apt install python3-distributed).") from None
+                             "Debian: apt install python3-distributed).")
+        from distributed import Client
+
         if self.scheduler:
-            self.client, self.cluster = Client(self.scheduler, timeout="30s"), None
+            self.client, self.cluster = _connect(self.scheduler), None
         else:
-            n = self.workers or os.cpu_count() or 1
-            self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=self.processes,
-                                        dashboard_address=None, silence_logs=logging.ERROR)
+            self.cluster = _local_cluster(self.workers or os.cpu_count() or 1, self.processes)
             self.client = Client(self.cluster)
         return self.client
 
@@ -154,3 +175,46 @@ class _client:
         if self.cluster is not None:
             self.cluster.close()
         return False
+
+
+def _local_cluster(n: int, processes: bool):
+    """A LocalCluster reachable only with the credentials it makes (TLS on 127.0.0.1), without a
+    dashboard. Dask always starts HTTP servers too: on 127.0.0.1 (given explicitly, since older Dask
+    binds a worker's to every interface otherwise), answering health checks only (and a worker's
+    read-only status pages when bokeh is installed)."""
+    import importlib.util
+
+    import dask
+    from distributed import LocalCluster
+
+    if importlib.util.find_spec("cryptography") is None:
+        raise InputError("The local Dask cluster authenticates with TLS credentials made for each batch, which "
+                         "needs the cryptography package (pip install cryptography; Debian: apt install "
+                         "python3-cryptography).")
+    health_only = {"distributed.scheduler.http.routes": ["distributed.http.health"],
+                   "distributed.worker.http.routes": ["distributed.http.health"]}
+    with dask.config.set(health_only):
+        return LocalCluster(n_workers=n, threads_per_worker=1, processes=processes, host="127.0.0.1", security=True,
+                            dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+                            worker_dashboard_address="127.0.0.1:0", silence_logs=logging.ERROR)
+
+
+def _connect(address: str):
+    """A client of the scheduler at ``address``, or :class:`SchedulerError` within ``CONNECT_TIMEOUT_S``."""
+    from distributed import Client
+    from distributed.security import Security
+
+    warning = unauthenticated_warning(address)
+    if warning:
+        logger.warning(warning)
+    if address.lower().startswith("tls://") and Security().get_connection_args("client")["ssl_context"] is None:
+        raise SchedulerError(f"The Dask scheduler {address} needs TLS credentials, and Dask's configuration has none: "
+                             "set distributed.comm.tls.ca-file, distributed.comm.tls.client.cert and "
+                             "distributed.comm.tls.client.key (for example DASK_DISTRIBUTED__COMM__TLS__CA_FILE=ca.pem "
+                             "and the like, or ~/.config/dask/distributed.yaml).")
+    try:
+        return Client(address, timeout=f"{CONNECT_TIMEOUT_S}s")
+    except OSError as exc:  # refused, timed out, or a TLS handshake the scheduler rejected
+        raise SchedulerError(f"The Dask scheduler {address} did not accept a connection within {CONNECT_TIMEOUT_S} s "
+                             f"({exc}); check the address, that the scheduler runs, and for tls:// the "
+                             "credentials.") from None

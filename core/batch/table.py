@@ -2,8 +2,9 @@
 
 One feature per pair: its footprint (the target's outline mapped through the registration, in
 the reference CRS, or WGS 84 when the references' CRSs differ; no geometry for failed pairs),
-status, verdict, error bound, self-reported RMSE, GCP count, method, time, message and output
-paths. Written whole or not at all, through the same staging as every output.
+status, verdict, error bound (verified pairs only), self-reported RMSE, GCP count, method, time,
+message and output paths (status and verdict: see :mod:`.task`). Written whole or not at all,
+through the same staging as every output.
 """
 from __future__ import annotations
 

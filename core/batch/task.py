@@ -5,6 +5,12 @@ into the job's own output folder (published whole or not at all, so a worker kil
 leaves nothing half-written) and returns a plain record (JSON-able) of what happened; it never
 raises for a pair that fails, so one bad pair never stops a batch. A job whose folder already holds
 a finished set for the same inputs is not run again (:func:`finished_record`).
+
+A record's ``status`` is the pair's outcome: 'verified'; 'unverified' when a model was found but the
+independent check did not verify it (its ``verdict`` then says 'suspect' or 'failed', the check's
+own words, as ``hamta register`` exits 3 for both); 'failed' when no model was found (``verdict``
+None). ``error_bound_px`` (reference px) is given only for a verified pair, since the check bounds
+the error of nothing else.
 """
 from __future__ import annotations
 
@@ -51,7 +57,8 @@ def register_job(job: Job, settings: BatchSettings) -> dict:
     except UnverifiedResult:
         pass  # its report says why; the record reads it
     except (HamtaError, ValueError, ArithmeticError, MemoryError) as exc:
-        return failed_record(job, method, time.perf_counter() - t0, str(exc).strip().splitlines()[0])
+        lines = str(exc).strip().splitlines() or [type(exc).__name__]
+        return failed_record(job, method, time.perf_counter() - t0, lines[0])
     return from_report(job, method, time.perf_counter() - t0)
 
 
@@ -91,15 +98,16 @@ def from_report(job: Job, method: str, seconds: float, rep: Optional[dict] = Non
         footprint = None
     status = "verified" if verdict == "verified" else "unverified"
     stats = rep.get("stats", {})
-    return _record(job, method, status, seconds, method_used=rep.get("method"), verdict=verdict,
-                   error_bound_px=quality.get("error_bound_px"), rmse_px=stats.get("rmse_px"),
-                   n_gcps=stats.get("n_gcps"), outputs=rep.get("outputs") or {"report": path}, footprint=footprint,
+    bound = quality.get("error_bound_px") if status == "verified" else None
+    return _record(job, method, status, seconds, method_used=rep.get("method"), verdict=verdict, error_bound_px=bound,
+                   rmse_px=stats.get("rmse_px"), n_gcps=stats.get("n_gcps"),
+                   outputs=rep.get("outputs") or {"report": path}, footprint=footprint,
                    crs=rep["reference"].get("crs"), pixel_mode=bool(rep["reference"].get("pixel_mode")),
                    message="; ".join(quality.get("reasons") or []))
 
 
 def failed_record(job: Job, method: str, seconds: float, message: str) -> dict:
-    """The record of a pair that produced no registration."""
+    """The record of a pair that produced no registration (no verdict, no error figures)."""
     return _record(job, method, "failed", seconds, message=message)
 
 

@@ -111,10 +111,24 @@ def final_fit(kind: str, estimate: Estimate, max_gcps: int, frame: Optional[CrsF
             if np.array_equal(new, inliers) or new.sum() < MIN_POINTS[kind]:
                 break
             inliers = new
-    idx = np.flatnonzero(inliers)
+    idx = distinct(np.flatnonzero(inliers), p)
+    if len(idx) < MIN_POINTS[kind]:
+        raise InsufficientMatchesError(f"only {len(idx)} distinct agreeing points; the {kind} model needs "
+                                       f"{MIN_POINTS[kind]}", len(idx), MIN_POINTS[kind])
     used = idx[spread_subset(p.reference_px[idx], p.score[idx], max_gcps)]
     model = _fit(kind, p.target_px[used], p.reference_px[used], frame)
     return FinalFit(model, replace(p, inlier=inliers), used, estimate.refined)
+
+
+def distinct(idx: np.ndarray, points) -> np.ndarray:
+    """``idx`` without repeated places: where several points share a target pixel or a reference
+    pixel (matches of one keypoint at several orientations, or refined onto one spot), the best
+    scored is kept, so no GCP is listed twice. Returns sorted indexes into ``points``."""
+    idx = idx[np.argsort(-points.score[idx], kind="stable")]
+    for xy in (points.target_px, points.reference_px):
+        _, first = np.unique(np.round(xy[idx], 6), axis=0, return_index=True)
+        idx = idx[np.sort(first)]
+    return np.sort(idx)
 
 
 def _fit(kind, src, dst, frame):

@@ -18,7 +18,7 @@ import numpy as np
 import rasterio
 from affine import Affine
 from rasterio.enums import ColorInterp, MaskFlags, Resampling
-from rasterio.errors import NotGeoreferencedWarning, RasterioError
+from rasterio.errors import NodataShadowWarning, NotGeoreferencedWarning, RasterioError
 from rasterio.windows import Window
 
 from ..errors import InputError
@@ -92,6 +92,9 @@ def open_raster(path, role: str = "input") -> RasterInfo:
         raise InputError(f"The {role} raster '{path}' does not exist.")
     if os.path.isdir(path):
         raise InputError(f"The {role} raster '{path}' is a folder, not a raster file.")
+    if os.path.exists(path) and not os.path.isfile(path):  # reading a pipe or a device would wait forever
+        raise InputError(f"The {role} raster '{path}' is not a regular file (a pipe, socket or device); save the "
+                         "raster to a file first.")
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NotGeoreferencedWarning)
@@ -143,6 +146,39 @@ def _collar(ds, dtype: str):
     return find_collar(sample, dtype, factor)
 
 
+def check_on_earth(info: RasterInfo, role: str) -> None:
+    """Refuse georeferencing that puts the raster where its CRS has no place: beyond a pole in a
+    geographic CRS (more than half a pixel), or where the CRS cannot be turned into longitude and
+    latitude. Rasters without a CRS (a map in local units) pass."""
+    if info.crs is None or not info.georeferenced:
+        return
+    from pyproj import CRS, Transformer
+
+    from ..coords import pixel_to_map, raster_outline
+
+    xy = pixel_to_map(info.transform, raster_outline(info.width, info.height, 9, ends=True))
+    crs = CRS.from_user_input(info.crs.to_wkt())
+    if crs.is_geographic:
+        lat = xy[:, 1]  # GDAL geotransforms are in longitude, latitude order whatever the CRS says
+        slack = 0.5 * abs(info.transform.e) + 1e-9
+        if np.abs(lat).max() > 90.0 + slack:
+            raise InputError(f"The {role} raster '{info.path}' is georeferenced beyond the pole (latitude up to "
+                             f"{np.abs(lat).max():.6g}°): its geotransform or CRS is wrong.")
+        return
+    geo = crs.geodetic_crs
+    if geo is None:
+        return
+    lon, lat = Transformer.from_crs(crs, geo, always_xy=True).transform(xy[:, 0], xy[:, 1], errcheck=False)
+    if not (np.isfinite(lon).all() and np.isfinite(lat).all() and np.abs(lat).max() <= 90.0):
+        raise InputError(f"The {role} raster '{info.path}' is georeferenced outside what its CRS ({crs.name}) can "
+                         "place on the Earth: its geotransform or CRS is wrong.")
+
+
+def numpy_dtype(name: str) -> np.dtype:
+    """The numpy type rasterio reads a GDAL pixel type into (GDAL's CInt16 has none of its own)."""
+    return np.dtype("complex64" if name == "complex_int16" else name)
+
+
 def resolve_bands(info: RasterInfo, band: Optional[int]) -> Tuple[int, ...]:
     """The 1-based band indexes to read for ``band``; ``None`` means luminance of RGB or band 1."""
     if band is None:
@@ -192,6 +228,7 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
     full_shape = (len(bands),) + tuple(shape)
     with warnings.catch_warnings(), _read_errors_named(info):
         warnings.simplefilter("ignore", NotGeoreferencedWarning)
+        warnings.simplefilter("ignore", NodataShadowWarning)  # nodata and an alpha band: GDAL uses the nodata
         with (_borrowed(dataset) if dataset is not None else rasterio.open(info.path)) as ds:
             if info.is_complex and decimating:
                 data = _read_amplitude_by_strips(ds, bands, window, shape, not inside)

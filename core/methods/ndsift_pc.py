@@ -162,15 +162,17 @@ def scale_space(image, valid, params: NdsiftParams) -> List[np.ndarray]:
     return gaussian_octaves(image, dog, max_octaves=params.octaves)
 
 
-def sar_features(img, params: NdsiftParams, info: dict = None) -> Features:
+def sar_features(img, params: NdsiftParams, info: dict = None, check=lambda: None) -> Features:
     """Keypoints, phase-congruency pruning and SIFT descriptors of one working image.
 
-    ``info`` (optional dict) receives diagnostics: keypoints before and after pruning.
+    ``info`` (optional dict) receives diagnostics: keypoints before and after pruning; ``check()``
+    is called between stages (it raises to stop, see :meth:`hamta.core.progress.Monitor.check`).
     """
     amp = normalised_amplitude(img.data, img.valid, params.units)
     if params.log_amplitude:
         amp = log_scaled(amp)
     octaves = scale_space(amp, img.valid, params)
+    check()
     dog = DogParams(layers=params.layers, sigma=params.sigma0, contrast_threshold=params.contrast_threshold,
                     edge_threshold=params.edge_threshold)
     kp, octave, level = dog_keypoints(octaves, dog)
@@ -180,8 +182,10 @@ def sar_features(img, params: NdsiftParams, info: dict = None) -> Features:
         keep &= octave > 0
     kp, octave, level = kp.subset(keep), octave[keep], level[keep]
     n_before = len(kp)
+    check()
     if params.phase_congruency and len(kp):
         pc = phase_congruency(amp, PhaseCongruencyParams(k=params.pc_noise_k))
+        check()
         r = np.clip(kp.xy[:, 1].astype(int), 0, pc.shape[0] - 1)
         c = np.clip(kp.xy[:, 0].astype(int), 0, pc.shape[1] - 1)
         keep = pc[r, c] >= params.pc_threshold
@@ -220,9 +224,9 @@ def describe(octaves, kp: Keypoints, octave: np.ndarray, level: np.ndarray) -> F
 
 def match(target, reference, params: NdsiftParams, monitor: Monitor, seed: int = 0) -> Matches:
     info_t, info_r = {}, {}
-    ft = sar_features(target, params, info_t)
+    ft = sar_features(target, params, info_t, monitor.check)
     monitor.report(0.45, "scale space, keypoints, descriptors")
-    fr = sar_features(reference, params, info_r)
+    fr = sar_features(reference, params, info_r, monitor.check)
     monitor.report(0.9, "scale space, keypoints, descriptors")
     it, ir, score = match_features(ft, fr, ratio=params.ratio, cross_check=params.cross_check)
     monitor.report(1.0, "matching")

@@ -101,7 +101,7 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
             write_report(out.temp_for(wanted["report"]), report)
         if "html" in wanted:
             monitor.report(0.9, "writing the quality report")
-            write_html_report(out.temp_for(wanted["html"]), result, monitor.span(0.9, 1.0))
+            write_html_report(out.temp_for(wanted["html"]), result, monitor.span(0.9, 1.0), outputs=wanted)
         monitor.check()  # the last moment a cancel stops the run: publishing is not interrupted
     monitor.report(1.0, "done")
     return wanted

@@ -5,7 +5,9 @@ embedded as a base64 PNG, so it can be mailed or archived alone. It shows the ve
 independent check first, then the two rasters with their GCPs, the residual vectors and their
 histogram, a checkerboard and a swipe view of the reference against the target warped through the
 model, the verification sites, and the numbers (model, statistics, timings, the ``auto`` attempts,
-the GCP table).
+the GCP table). Lengths are given in reference pixels and in the reference CRS's unit (metres,
+degrees...), next to the CRS, the pixel sizes, the date and the files written; in pixel mode (a
+reference without georeferencing) a banner says that coordinates are reference pixels.
 
 Both rasters are read once, decimated to a preview whose longest side is :data:`PREVIEW_PX`
 pixels (:func:`hamta.core.io.raster.read_image` with an output shape), so time and memory do not
@@ -20,15 +22,19 @@ import html
 import math
 import os
 from dataclasses import dataclass
-from typing import Iterable, List, Optional, Sequence, Tuple
+from datetime import datetime, timezone
+from typing import Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import cv2
 import numpy as np
+from pyproj import CRS as ProjCRS
 
 from ..coords import as_xy
 from ..estimation.inverse import invert_model
+from ..estimation.models import local_jacobian
 from ..io.raster import RasterInfo, read_image, resolve_bands
 from ..progress import Monitor
+from ..verify import VerifyParams
 from ..version import __version__
 
 PREVIEW_PX = 800  # longest side of the previews
@@ -74,7 +80,8 @@ class Preview:
         return as_xy(xy) * np.asarray(self.scale)
 
 
-def write_html_report(path: str, result, monitor: Optional[Monitor] = None) -> None:
+def write_html_report(path: str, result, monitor: Optional[Monitor] = None, *,
+                      outputs: Optional[Mapping[str, str]] = None) -> None:
     """Write the visual report of ``result`` to ``path`` as one self-contained HTML file.
 
     Parameters
@@ -86,11 +93,16 @@ def write_html_report(path: str, result, monitor: Optional[Monitor] = None) -> N
     monitor : Monitor, optional
         Receives progress and raises :class:`hamta.core.errors.RegistrationCanceled` when the caller
         asks to stop.
+    outputs : mapping of str to str, optional
+        The files of the run, {kind: path} as :func:`hamta.core.outputs.write_outputs` returns them
+        (``raster``, ``points``, ``gpkg``, ``vrt``, ``report``, ``html``); listed on the page.
+        ``path`` may be a staging name: the page lists these paths, not ``path``.
 
     Notes
     -----
     Each raster is read once at preview size (longest side :data:`PREVIEW_PX` px); a 1000 px pair
-    takes a fraction of a second, and larger rasters cost only the decimated read.
+    takes a fraction of a second, and larger rasters cost only the decimated read. The page is dated
+    with the time of writing (UTC).
     """
     monitor = monitor or Monitor()
     monitor.report(0.0, "report: previews")
@@ -99,11 +111,92 @@ def write_html_report(path: str, result, monitor: Optional[Monitor] = None) -> N
     monitor.report(0.4, "report: warping the target")
     warped, warped_ok = warp_to_reference(result.model, tgt, ref)
     monitor.report(0.6, "report: figures")
-    page = _page(result, ref, tgt, warped, warped_ok)
+    written = datetime.now(timezone.utc).replace(microsecond=0)
+    page = _page(result, ref, tgt, warped, warped_ok, outputs or {}, written)
     monitor.check()
     with open(path, "w", encoding="utf-8") as f:
         f.write(page)
     monitor.report(1.0, "report written")
+
+
+# ---------------------------------------------------------------------------------------------- map units
+
+UNIT_SYMBOLS = {"metre": "m", "meter": "m", "kilometre": "km", "degree": "°", "foot": "ft",
+                "US survey foot": "US ft", "Clarke's foot": "Clarke's ft"}
+
+
+def describe_crs(crs) -> Tuple[str, str]:
+    """``('WGS 84 / UTM zone 32N (EPSG:32632)', 'metre')``: a CRS's name with its EPSG code (when it
+    has one) and the unit of its first axis (``'unknown unit'`` without axes)."""
+    pcrs = ProjCRS.from_user_input(crs.to_wkt())
+    code = pcrs.to_epsg()
+    name = f"{pcrs.name} (EPSG:{code})" if code else f"{pcrs.name} (no EPSG code)"
+    unit = pcrs.axis_info[0].unit_name if pcrs.axis_info else "unknown unit"
+    return name, unit
+
+
+def _decimals(size: float) -> int:
+    """Decimals that resolve about a hundredth of ``size`` (a pixel's size)."""
+    return int(min(10, max(2, math.ceil(-math.log10(size)) + 2))) if size > 0 and math.isfinite(size) else 3
+
+
+@dataclass(frozen=True)
+class MapScale:
+    """How reference pixels read in the reference CRS: its label, unit and pixel size."""
+
+    crs: str
+    unit_name: str
+    pixel_size: float  # map units per reference pixel (geometric mean of the two axes)
+
+    @property
+    def symbol(self) -> str:
+        """The unit's symbol: ``'m'``, ``'°'``, ``'US ft'`` (the unit's name when it has none here)."""
+        return UNIT_SYMBOLS.get(self.unit_name, self.unit_name)
+
+    @property
+    def unit(self) -> str:
+        """The unit as printed after a number: ``' m'``, ``'°'``, ``' US ft'``."""
+        return self.symbol if self.symbol == "°" else " " + self.symbol
+
+    def length(self, size: Optional[float]) -> str:
+        """A length in map units (escaped), to about a hundredth of a pixel."""
+        return _num(size, f".{_decimals(self.pixel_size)}f", self.unit)
+
+    def px(self, value_px: Optional[float]) -> str:
+        """A length in reference px as map units (escaped); '–' when missing."""
+        return self.length(None if value_px is None else value_px * self.pixel_size)
+
+
+def map_scale(result) -> Optional[MapScale]:
+    """The reference's map scale; None in pixel mode (no georeferencing)."""
+    if result.pixel_mode or result.reference.crs is None:
+        return None
+    name, unit = describe_crs(result.reference.crs)
+    return MapScale(name, unit, result.reference.pixel_size)
+
+
+def _both(value_px: Optional[float], scale: Optional[MapScale], fmt: str = ".2f") -> str:
+    """``'0.41 px (4.10 m)'``: a length in reference px and, outside pixel mode, in map units."""
+    text = _num(value_px, fmt, " px")
+    if scale is None or text == "–":
+        return text
+    return f"{text} ({scale.px(value_px)})"
+
+
+def axis_sizes(info: RasterInfo) -> Tuple[float, float]:
+    """Map units per pixel along the raster's columns and rows."""
+    t = info.transform
+    return math.hypot(t.a, t.d), math.hypot(t.b, t.e)
+
+
+def registered_scale(result) -> Optional[float]:
+    """Reference px per target px at the target's centre, through the model (None if not finite)."""
+    centre = [[result.target.width / 2.0, result.target.height / 2.0]]
+    try:
+        det = float(np.linalg.det(local_jacobian(result.model, centre)[0]))
+    except (ValueError, np.linalg.LinAlgError):
+        return None
+    return math.sqrt(abs(det)) if math.isfinite(det) and det != 0 else None
 
 
 # ---------------------------------------------------------------------------------------------- previews
@@ -380,6 +473,11 @@ th{background:#f0f0ee}td.n{text-align:right;font-variant-numeric:tabular-nums}
 .bar{display:inline-block;width:140px;height:10px;vertical-align:middle;border:1px solid #999;margin:0 4px}
 details summary{cursor:pointer;color:#555}code{font-size:12.5px;word-break:break-all}
 footer{margin-top:30px;color:#777;font-size:12.5px}
+.banner{border:2px solid #1f5fa8;background:#e6f0fb;color:#123e6e;font-weight:600;border-radius:6px;
+padding:10px 14px;margin:12px 0}
+.facts table{width:100%}.facts th{width:260px;font-weight:600}.files{margin:0;padding-left:18px}
+.facts{max-width:980px}.plain ul{margin:0;padding-left:20px}.plain li{margin:0 0 6px}
+.tech{font-size:13px;margin-top:6px}
 """
 
 
@@ -397,9 +495,10 @@ def _num(value, fmt: str = ".3f", unit: str = "") -> str:
     return _e(format(f, fmt) + unit) if math.isfinite(f) else "–"
 
 
-def _rows(pairs: Iterable[Tuple[str, str]]) -> str:
-    """A two-column table; values are HTML already escaped by the caller."""
-    return "<table>" + "".join(f"<tr><th>{_e(k)}</th><td class=n>{v}</td></tr>" for k, v in pairs) + "</table>"
+def _rows(pairs: Iterable[Tuple[str, str]], numeric: bool = True) -> str:
+    """A two-column table; values are HTML already escaped by the caller; ``numeric`` right-aligns them."""
+    td = "<td class=n>" if numeric else "<td>"
+    return "<table>" + "".join(f"<tr><th>{_e(k)}</th>{td}{v}</td></tr>" for k, v in pairs) + "</table>"
 
 
 def _table(header: Sequence[str], rows: Iterable[Sequence[str]], numeric: Sequence[bool] = ()) -> str:
@@ -420,25 +519,38 @@ def _swatch(bgr, symbol: str, label: str) -> str:
     return f'<span class=swatch style="color:rgb({r},{g},{b});text-shadow:0 0 1px #000">{symbol}</span> {_e(label)}'
 
 
-def _page(result, ref: Preview, tgt: Preview, warped: np.ndarray, warped_ok: np.ndarray) -> str:
+def _page(result, ref: Preview, tgt: Preview, warped: np.ndarray, warped_ok: np.ndarray,
+          outputs: Mapping[str, str], written: datetime) -> str:
     name_t, name_r = os.path.basename(result.target.path), os.path.basename(result.reference.path)
+    scale = map_scale(result)
     parts = [
         "<!DOCTYPE html><html lang=en><head><meta charset=utf-8>",
         f"<title>Hamta report: {_e(name_t)} onto {_e(name_r)}</title><style>{CSS}</style></head><body><main>",
-        _header(result, name_t, name_r),
+        _header(result, name_t, name_r, scale),
+        _facts(result, scale, outputs, written),
         _gcp_section(result, ref, tgt),
         _residual_section(result, ref),
         _overlay_section(ref, warped, warped_ok),
-        _verification_section(result, ref),
-        _numbers_section(result),
-        _gcp_table(result),
-        f"<footer>Hamta {_e(__version__)}" + (f" · run {_e(result.run_id)}" if result.run_id else "")
-        + "</footer></main></body></html>\n",
+        _verification_section(result, ref, scale),
+        _numbers_section(result, scale),
+        _gcp_table(result, scale),
+        f"<footer>Hamta {_e(__version__)} · written {_e(_iso(written))}"
+        + (f" · run {_e(result.run_id)}" if result.run_id else "") + "</footer></main></body></html>\n",
     ]
     return "\n".join(parts)
 
 
-def _header(result, name_t: str, name_r: str) -> str:
+PIXEL_MODE_BANNER = ("Pixel-to-pixel registration: the reference has no georeferencing, so coordinates are reference "
+                     "pixels and the outputs carry no CRS")
+NO_CRS = "none (pixel mode)"
+
+
+def _iso(when: datetime) -> str:
+    """``2026-06-01T12:34:56Z``: UTC, ISO 8601, to the second."""
+    return when.astimezone(timezone.utc).replace(tzinfo=None).isoformat(timespec="seconds") + "Z"
+
+
+def _header(result, name_t: str, name_r: str, scale: Optional[MapScale]) -> str:
     v = result.verification
     verdict = "not checked" if v is None else v.verdict
     fg, bg = VERDICT_CSS.get(verdict, VERDICT_CSS["not checked"])
@@ -446,17 +558,70 @@ def _header(result, name_t: str, name_r: str) -> str:
     if v is None:
         detail = "The independent check was not run."
     else:
-        detail = (f"Tolerance asked for: <b>{_num(v.tolerance_px, '.2f', ' px')}</b> · estimated error: "
-                  f"<b>{_num(v.error_px, '.2f', ' px')}</b> · error bound: "
-                  f"<b>{_num(v.error_bound_px, '.2f', ' px')}</b> (reference px)")
+        detail = (f"Accuracy asked for: <b>{_both(v.tolerance_px, scale)}</b> · estimated error: "
+                  f"<b>{_both(v.error_px, scale)}</b> · error bound (estimate plus a safety margin): "
+                  f"<b>{_both(v.error_bound_px, scale)}</b>" + ("" if scale else " (reference px)"))
+    banner = "" if not result.pixel_mode else f"<div class=banner>{_e(PIXEL_MODE_BANNER)}</div>"
     return (f"<h1>Registration report</h1><p class=sub>Target <b title=\"{_e(result.target.path)}\">{_e(name_t)}</b> "
             f"onto reference <b title=\"{_e(result.reference.path)}\">{_e(name_r)}</b> · method <b>{_e(result.method)}"
-            f"</b> · model <b>{_e(result.model.kind)}</b></p>"
+            f"</b> · model <b>{_e(result.model.kind)}</b></p>{banner}"
             f'<div class=verdict style="border-color:{fg};background:{bg}"><span class=word style="color:{fg}">'
             f"{_e(verdict)}</span>{reasons}<div>{detail}</div></div>"
             "<p class=note>The RMSE of the GCPs measures how consistent the points are with the model, not how "
             "accurate the registration is. The verdict and the error bound come from an independent check at sites "
             "the model was not fitted on (section 4).</p>")
+
+
+OUTPUT_LABELS = {"raster": "registered raster", "points": "GCPs for the QGIS Georeferencer (.points)",
+                 "gpkg": "GCP layer (GeoPackage)", "vrt": "GCP VRT", "report": "report (JSON)",
+                 "html": "this report"}
+
+
+def _facts(result, scale: Optional[MapScale], outputs: Mapping[str, str], written: datetime) -> str:
+    """The run at a glance: CRS, pixel sizes, accuracy in map units, date, files written."""
+    ref, tgt, v = result.reference, result.target, result.verification
+    if scale is None:
+        crs, ref_size = _e(NO_CRS), _e(NO_CRS + ": lengths are in reference px")
+    else:
+        crs = _e(scale.crs) + f" · unit: {_e(scale.unit_name)}"
+        ref_size = _sizes(axis_sizes(ref), scale.unit) + " per px"
+    if tgt.georeferenced and tgt.crs is not None:
+        t_crs, t_unit = describe_crs(tgt.crs)
+        t_sym = MapScale(t_crs, t_unit, tgt.pixel_size).unit
+        t_own = (_sizes(axis_sizes(tgt), t_sym) + f" per px in {_e(t_crs)}"
+                 + (" (georeferenced by GCPs)" if tgt.georef_source == "gcps" else ""))
+    else:
+        t_own = "not georeferenced"
+    k = registered_scale(result)
+    if k is None:
+        t_reg = "–"
+    elif scale is None:
+        t_reg = _e(f"{k:.4g} reference px per target px")
+    else:
+        t_reg = f"{scale.px(k)} per px ({_e(f'{k:.4g}')} reference px per target px, at the target centre)"
+    rmse = result.stats.get("rmse_px")
+    rows = [("reference CRS", crs), ("reference pixel size", ref_size),
+            ("target pixel size, own georeferencing", t_own), ("target pixel size, as registered", t_reg),
+            ("GCP RMSE", _both(rmse, scale, ".3f")),
+            ("estimated error (independent check)", "not checked" if v is None else _both(v.error_px, scale)),
+            ("error bound (independent check)", "not checked" if v is None else _both(v.error_bound_px, scale)),
+            ("date (UTC)", f"<time datetime=\"{_e(_iso(written))}\">{_e(_iso(written))}</time>")]
+    if result.run_id:
+        rows.append(("run id", _e(result.run_id)))
+    if outputs:
+        items = "".join(f"<li>{_e(OUTPUT_LABELS.get(kind, kind))}: <code>{_e(path)}</code></li>"
+                        for kind, path in outputs.items())
+        rows.append(("files written", f"<ul class=files>{items}</ul>"))
+    return "<div class=facts>" + _rows(rows, numeric=False) + "</div>"
+
+
+def _sizes(sizes: Tuple[float, float], unit: str) -> str:
+    """``'10.00 m'`` for square pixels, ``'10.00 × 12.00 m (x × y)'`` otherwise (escaped)."""
+    sx, sy = sizes
+    fmt = f".{_decimals(math.sqrt(sx * sy))}f"
+    if abs(sx - sy) <= 1e-6 * max(sx, sy):
+        return _num(sx, fmt, unit)
+    return _e(f"{format(sx, fmt)} × {format(sy, fmt)}{unit} (x × y)")
 
 
 def _split_gcps(gcps) -> Tuple[np.ndarray, ...]:
@@ -517,16 +682,79 @@ def _overlay_section(ref: Preview, warped: np.ndarray, valid: np.ndarray) -> str
     return "<h2>3. Reference and warped target</h2><div class=grid>" + board + swipe + "</div>"
 
 
-def _verification_section(result, ref: Preview) -> str:
+def _odds(p: float) -> str:
+    """A small probability as 'about once in 40 000 tries' (plain words for an analyst)."""
+    if not math.isfinite(p) or p >= 0.5:
+        return "easily"
+    if p < 1e-9:
+        return "less than once in a billion tries"
+    n = 1.0 / p
+    digits = 10 ** max(0, math.floor(math.log10(n)) - 1)  # two significant digits
+    n = round(n / digits) * digits
+    if n >= 1e6:
+        return f"about once in {n / 1e6:.2g} million tries"
+    return f"about once in {n:,.0f} tries".replace(",", "\u2009")
+
+
+def _plain_check(v, scale: Optional[MapScale]) -> List[str]:
+    """The independent check in plain words, one sentence per item; numbers escaped."""
+    params = VerifyParams(tolerance_px=v.tolerance_px)
+    other = int(v.n_sites - np.count_nonzero(v.agree | v.contradict))
+    if v.n_sites == 0:
+        return ["No site of the overlap could be compared (too small an overlap, masked pixels, or no detail)."]
+
+    def sites(n: int) -> str:
+        return f"{n} site" + ("" if n == 1 else "s")
+
+    out = [f"At <b>{v.n_agree} of {sites(v.n_sites)}</b> checked, the two images line up where the model puts them: "
+           f"the best match lies within {_both(params.agree_px, scale, '.0f')} of the model's position."]
+    if v.n_contradict:
+        out.append(f"At <b>{sites(v.n_contradict)}</b> the images clearly match better somewhere else: the ground "
+                   "changed there, or the model is wrong there.")
+    else:
+        out.append("No site clearly matches better somewhere else.")
+    if other:
+        out.append(f"{sites(other)} gave no clear answer (too little detail, such as water or uniform fields, or "
+                   "changes between the images).")
+    by_peaks = v.chance <= params.max_chance
+    by_shape = v.z_chance <= params.max_z_chance and v.z_mw <= params.max_rank_chance
+    if by_peaks:
+        out.append(f"A wrong alignment of these two images would line up at so many sites {_odds(v.chance)}: "
+                   "the agreement is real.")
+    elif by_shape:
+        out.append(f"At <b>{v.z_hits} of {v.n_sites}</b> sites the two images match better at the model's position "
+                   f"than when shifted slightly; a wrong alignment would not do this ({_odds(v.z_chance)}).")
+    else:
+        out.append(f"A wrong alignment of these two images would line up this well {_odds(min(v.chance, v.z_chance))}"
+                   ", so this agreement alone does not prove the model.")
+    if v.error_px is not None and v.error_bound_px is not None:
+        out.append(f"From the sites that line up, the error of the alignment is estimated at "
+                   f"<b>{_both(v.error_px, scale)}</b>, and at most <b>{_both(v.error_bound_px, scale)}</b> with a "
+                   f"safety margin; the accuracy asked for was {_both(v.tolerance_px, scale)}.")
+    else:
+        out.append("Too few sites line up to estimate the error of the alignment.")
+    if v.coverage is not None and math.isfinite(v.coverage):
+        out.append(f"The sites that support the model spread over {v.coverage * 100:.0f} % of the compared area's "
+                   f"width and height (at least {params.min_coverage * 100:.0f} % is needed to vouch for the whole "
+                   "image).")
+    if v.corroboration:
+        c = v.corroboration
+        out.append(f"Confirmed by a second method: <b>{_e(c.get('method', ''))}</b> found an alignment that agrees "
+                   f"with this one within {_both(c.get('distance_px'), scale)}, and the check partly supported each.")
+    return out
+
+
+def _verification_section(result, ref: Preview, scale: Optional[MapScale] = None) -> str:
     v = result.verification
     if v is None:
         return "<h2>4. Independent check</h2><p>Not run.</p>"
     other = int(v.n_sites - np.count_nonzero(v.agree | v.contradict))
-    legend = (f"{_swatch(AGREE_BGR, '□', f'{v.n_agree} agree')} · "
-              f"{_swatch(CONTRADICT_BGR, '□', f'{v.n_contradict} contradict')} · "
-              f"{_swatch(OTHER_BGR, '□', f'{other} without a clear answer')}")
-    cap = (f"Check sites ({v.template_px} px templates) on the reference: the target, resampled through the model, "
-           f"is compared with the reference at each. {legend}.")
+    legend = (f"{_swatch(AGREE_BGR, '□', f'{v.n_agree} line up')} · "
+              f"{_swatch(CONTRADICT_BGR, '□', f'{v.n_contradict} match better elsewhere')} · "
+              f"{_swatch(OTHER_BGR, '□', f'{other} no clear answer')}")
+    cap = (f"Check sites (squares of {v.template_px} reference px) on the reference: at each, the target placed by "
+           f"the model is compared with the reference. {legend}.")
+    plain = "<div class=plain><ul>" + "".join(f"<li>{sentence}</li>" for sentence in _plain_check(v, scale)) + "</ul>"
     rows = [("verdict", _e(v.verdict)), ("sites compared", str(v.n_sites)), ("agree", str(v.n_agree)),
             ("contradict", str(v.n_contradict)), ("clear (agree + contradict)", str(v.n_clear)),
             ("chance rate per site", _num(v.chance_rate, ".3f")),
@@ -539,23 +767,26 @@ def _verification_section(result, ref: Preview) -> str:
             ("time", _num(v.time_s, ".2f", " s"))]
     if v.corroboration:
         rows.append(("corroborated by", _e(v.corroboration.get("summary", v.corroboration.get("method", "")))))
+    details = ("<details class=tech><summary>Technical details of the check (the names used in report.json's "
+               "<code>quality</code>)</summary>" + _rows(rows) + "</details></div>")
     img = sites_figure(ref, v)
     return ("<h2>4. Independent check</h2><div class=grid>" + _figure(_jpeg(img), "check sites", cap, *ref.shape[::-1])
-            + f"<div>{_rows(rows)}</div></div>")
+            + plain + details + "</div>")
 
 
-def _numbers_section(result) -> str:
+def _numbers_section(result, scale: Optional[MapScale] = None) -> str:
     s = result.stats
-    stats = [("GCPs (enabled)", str(s.get("n_gcps", "–"))), ("RMSE", _num(s.get("rmse_px"), ".3f", " px")),
-             ("leave-one-out RMS", _num(s.get("rms_loo_px"), ".3f", " px")),
-             ("max residual", _num(s.get("max_residual_px"), ".3f", " px")),
+    stats = [("GCPs (enabled)", str(s.get("n_gcps", "–"))), ("RMSE", _both(s.get("rmse_px"), scale, ".3f")),
+             ("leave-one-out RMS", _both(s.get("rms_loo_px"), scale, ".3f")),
+             ("max residual", _both(s.get("max_residual_px"), scale, ".3f")),
              ("matches / inliers", f"{_e(s.get('n_matches', '–'))} / {_e(s.get('n_inliers', '–'))}"),
              ("keypoints target / reference",
               f"{_e(s.get('n_keypoints_target', '–'))} / {_e(s.get('n_keypoints_reference', '–'))}"),
              ("refined at full resolution", _e(s.get("refined", "–")))]
     times = [(k, _num(t, ".3f", " s")) for k, t in result.timings.items()]
+    unit = "reference px" if scale is None else f"reference px and {scale.symbol}"
     out = ("<h2>5. Model and statistics</h2><div class=grid><div><h3>Model</h3>" + model_html(result.model)
-           + "</div><div><h3>GCP statistics (reference px)</h3>" + _rows(stats)
+           + f"</div><div><h3>GCP statistics ({_e(unit)})</h3>" + _rows(stats)
            + "<h3>Time per stage</h3>" + _rows(times) + "</div></div>")
     if result.notes:
         out += "<h3>Notes</h3><ul>" + "".join(f"<li>{_e(n)}</li>" for n in result.notes) + "</ul>"
@@ -610,22 +841,19 @@ def _value_html(value) -> str:
     return _e(f"{' × '.join(map(str, a.shape))} values (in report.json)")
 
 
-def _map_decimals(result) -> int:
-    """Decimals that resolve about a hundredth of a reference pixel in map units."""
-    size = result.reference.pixel_size if not result.pixel_mode else 1.0
-    return int(min(10, max(2, math.ceil(-math.log10(size)) + 2))) if size > 0 else 3
-
-
-def _gcp_table(result) -> str:
+def _gcp_table(result, scale: Optional[MapScale] = None) -> str:
     gcps = result.gcps
-    dec = _map_decimals(result)
+    dec = _decimals(1.0 if scale is None else scale.pixel_size)
     rows = [(str(i + 1), "yes" if g.enabled else "no", _num(g.target_px[0], ".2f"), _num(g.target_px[1], ".2f"),
              _num(g.map_xy[0], f".{dec}f"), _num(g.map_xy[1], f".{dec}f"), _num(g.residual_px, ".3f"))
+            + (() if scale is None else (_num(g.residual_px * scale.pixel_size, f".{dec}f"),))
             for i, g in enumerate(gcps[:MAX_TABLE_ROWS])]
-    units = "reference px" if result.pixel_mode else "reference CRS"
+    units = "reference px" if scale is None else f"reference CRS, {scale.symbol}"
     header = ["id", "enabled", "target x", "target y", f"map X ({units})", f"map Y ({units})", "residual (px)"]
+    if scale is not None:
+        header.append(f"residual ({scale.symbol})")
     omitted = len(gcps) - len(rows)
     more = f"<p>{omitted} more rows not shown (all are in report.json and the GCP files).</p>" if omitted > 0 else ""
     return ("<h2>6. GCPs</h2><p class=note>Target px (x = column, y = row, from the top-left corner); residual = "
-            "|model(target) − reference| in reference px.</p>"
-            + _table(header, rows, [True, False, True, True, True, True, True]) + more)
+            "|model(target) − reference| in reference px" + ("" if scale is None else " and map units") + ".</p>"
+            + _table(header, rows, [True, False, True, True, True, True, True, True]) + more)

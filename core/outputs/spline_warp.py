@@ -27,6 +27,7 @@ from rasterio.windows import Window
 
 from ..coords import map_to_pixel
 from ..estimation.inverse import invert_model
+from ..io.raster import numpy_dtype
 
 TILE_PX = 1024
 KERNELS = {"nearest": 0, "bilinear": 1}  # spline order in scipy.ndimage; the same kernels as GDAL's
@@ -42,7 +43,7 @@ def spline_rows(src, bands, result, grid, fill, resampling: str, r0: int, n: int
     """Rows ``r0 .. r0 + n`` of the warped output: (bands [+ alpha], n, width), like GDAL's warp of
     ``src`` (the model VRT over the target) onto ``grid`` = (transform, width, height, crs, _)."""
     transform, width, _, crs, _ = grid
-    dtype = np.dtype(src.dtypes[0])
+    dtype = numpy_dtype(src.dtypes[0])
     count = len(bands) + (1 if fill.alpha else 0)
     out = np.zeros((count, n, width), dtype=dtype)
     if fill.nodata is not None:

@@ -9,6 +9,8 @@ def verdict_tags(result) -> dict:
             "HAMTA_VERDICT": "unchecked" if v is None else v.verdict}
     if result.run_id:
         tags["HAMTA_RUN_ID"] = result.run_id
+    if result.pixel_mode:
+        tags["HAMTA_PIXEL_MODE"] = pixel_mode_text()
     if v is not None:
         if v.error_bound_px is not None:
             tags["HAMTA_ERROR_BOUND_PX"] = f"{v.error_bound_px:.3f}"
@@ -26,3 +28,17 @@ def verdict_text(result) -> str:
         bound = "" if v.error_bound_px is None else f", estimated error within {v.error_bound_px:.2f} px"
         return f"verified by an independent check{bound}"
     return f"NOT VERIFIED ({v.verdict}): " + "; ".join(v.reasons)
+
+
+def counts_text(stats: dict) -> str:
+    """Where the GCPs came from, in words that add up: refinement measures its own points at full
+    resolution, so a refined run can keep more GCPs than it had matches."""
+    if stats.get("refined"):
+        return (f"{stats['n_gcps']} GCPs kept of {stats['n_refined']} points measured at full resolution "
+                f"(seeded by {stats['n_inliers']} agreeing matches of {stats['n_matches']})")
+    return f"{stats['n_gcps']} GCPs kept of {stats['n_inliers']} agreeing matches (of {stats['n_matches']} found)"
+
+
+def pixel_mode_text() -> str:
+    return ("pixel-to-pixel registration: the reference has no georeferencing, so coordinates are the reference's "
+            "pixels and the outputs carry no CRS")

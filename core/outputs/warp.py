@@ -36,6 +36,7 @@ from rasterio.windows import Window
 from ..coords import as_xy, compose, raster_outline
 from ..errors import OutputError
 from ..estimation.models import local_jacobian
+from ..io.raster import numpy_dtype
 from ..options import FORMAT, GRID, RESAMPLING, OutputOptions
 from ..progress import Monitor
 from .model_vrt import scratch_dir, write_model_vrt
@@ -84,7 +85,7 @@ def fill_plan(target, dtype: str, output: OutputOptions) -> Fill:
         return Fill(float(value), False, source)
     if source is not None:
         return Fill(float(source), False, source)
-    if np.issubdtype(np.dtype(dtype), np.floating):
+    if np.issubdtype(numpy_dtype(dtype), np.floating):
         return Fill(float("nan"), False, None)
     return Fill(None, True, None)
 
@@ -194,7 +195,7 @@ def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, opt
     if crs is not None:
         profile.update(crs=crs, transform=transform)
     bands = list(range(1, src.count + 1))
-    row_bytes = max(width * count * np.dtype(dtype).itemsize, 1)
+    row_bytes = max(width * count * numpy_dtype(dtype).itemsize, 1)
     rows = max(256, int(STRIP_BYTES // row_bytes) // 256 * 256)
     resampling = gdal_resampling(output.resampling)
     own = spline_applies(result, dtype, output.resampling)
@@ -207,7 +208,7 @@ def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, opt
                           window=Window(0, r0, width, n))
                 monitor.report((r0 + n) / height, "writing raster")
                 continue
-            block = np.zeros((count, n, width), dtype=dtype)
+            block = np.zeros((count, n, width), dtype=numpy_dtype(dtype))
             if fill.nodata is not None:
                 block[:] = fill.nodata
             reproject(rasterio.band(src, bands), block, src_nodata=fill.source,

@@ -39,3 +39,29 @@ def test_nothing_found_names_every_attempt(raster_writer, demo_pair, monkeypatch
 def test_auto_takes_no_method_parameters(demo_pair):
     with pytest.raises(ValueError, match="takes no method parameters"):
         register(demo_pair["target"], demo_pair["reference"], "auto", params={"ratio": 0.7})
+
+
+def test_the_budget_stops_a_running_method(monkeypatch):
+    """The budget is a deadline: a step still running when it is spent stops at its next progress
+    report (the first step, the fast path, is exempt), and the steps after it do not start."""
+    import time
+
+    from hamta.core import RegisterOptions
+    from hamta.core.progress import Monitor
+
+    ran = []
+
+    def attempt(method, params, monitor, refine):
+        ran.append(method)
+        t0 = time.perf_counter()
+        while time.perf_counter() - t0 < (0.4 if method == "first" else 30):
+            time.sleep(0.01)
+            monitor.report(0.5, "working")
+        raise InsufficientMatchesError("nothing", 0, 8)
+
+    chain = (Step("first", {}, "t"), Step("slow", {}, "t"), Step("never", {}, "t"))
+    t0 = time.perf_counter()
+    with pytest.raises(InsufficientMatchesError, match="first: nothing; slow: time budget of 1 s spent; never: time "
+                                                        "budget"):
+        auto_module.register_auto(attempt, RegisterOptions(auto_budget_s=1.0), Monitor(), chain)
+    assert ran == ["first", "slow"] and time.perf_counter() - t0 < 2.0

@@ -114,3 +114,207 @@ def test_a_big_scene_measures_its_local_windows_on_the_cluster(tmp_path, demo_pa
     report = json.loads((out / "report.json").read_text())
     assert rc == 0 and report["model"]["type"] == "tps" and report["local"]["n_kept"] >= 40
     assert busy() - before > 0.3  # the windows were measured by the cluster's workers
+
+
+def _listening(pid):
+    """(host, port) of every TCP socket the process ``pid`` and its children listen on."""
+    import psutil
+
+    out = []
+    for proc in [psutil.Process(pid)] + psutil.Process(pid).children(recursive=True):
+        conns = proc.net_connections(kind="inet") if hasattr(proc, "net_connections") else proc.connections("inet")
+        out += [c.laddr[:2] for c in conns if c.status == psutil.CONN_LISTEN]
+    return out
+
+
+INTRUDER = """
+import gc, sys
+from distributed import Client
+from distributed.security import Security
+
+address = sys.argv[1]
+for kwargs in (dict(address=address), dict(address=address.replace("tls://", "tcp://")),
+               dict(address=address, security=Security.temporary())):
+    try:
+        Client(timeout="3s", **kwargs).close()
+        print("admitted")
+    except Exception:
+        print("refused")
+    gc.collect()  # a failed client collected while the next one starts would deadlock Dask's loop
+"""
+
+
+def _first_bytes(address, context):
+    """What the scheduler at ``address`` (tls://host:port) first sends over TLS with ``context``
+    (b"" when it refuses the handshake)."""
+    import socket
+    import ssl
+
+    host, port = address.split("://")[1].rsplit(":", 1)
+    try:
+        with socket.create_connection((host, int(port)), timeout=10) as raw, context.wrap_socket(raw) as s:
+            return s.recv(64)
+    except (ssl.SSLError, ConnectionError):
+        return b""
+
+
+@pytest.mark.parametrize("processes", [True, False], ids=["processes", "threads"])
+def test_the_local_cluster_admits_only_its_own_client(processes):
+    """The batch's own cluster (as run_batch and Processing start it): TLS on 127.0.0.1 with
+    credentials of its own, no dashboard; clients without those credentials are refused."""
+    import socket
+    import ssl
+    import subprocess
+    import sys
+    import warnings
+
+    from hamta.core.batch.runner import _client
+
+    with socket.socket() as busy, warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:  # Dask's dashboard port taken, as by another cluster: no warning about it either way
+            busy.bind(("127.0.0.1", 8787))
+            busy.listen()
+        except OSError:
+            pass
+        with _client(None, 1, processes) as client:
+            address = client.scheduler.address
+            assert address.startswith("tls://127.0.0.1:")
+            assert client.submit(sum, [1, 2]).result() == 3
+            assert {host for host, _ in _listening(os.getpid())} == {"127.0.0.1"}
+            intruder = subprocess.run([sys.executable, "-c", INTRUDER, address], capture_output=True, text=True,
+                                      timeout=120)
+            assert intruder.stdout.split() == ["refused"] * 3, intruder.stderr
+            no_certificate = ssl.SSLContext(ssl.PROTOCOL_TLS_CLIENT)
+            no_certificate.check_hostname, no_certificate.verify_mode = False, ssl.CERT_NONE
+            assert _first_bytes(address, no_certificate) == b""
+            assert _first_bytes(address, client.security.get_connection_args("client")["ssl_context"])
+    assert not [w for w in caught if "8787" in str(w.message) or "already in use" in str(w.message)]
+
+
+@pytest.fixture
+def tls_scheduler(tmp_path):
+    """A scheduler and one worker thread on 127.0.0.1 that speak only TLS, with certificates in
+    files; yields its address and the Dask configuration of a client holding them."""
+    from distributed import LocalCluster
+    from distributed.security import Security
+
+    made = Security.temporary()
+    cert, key = tmp_path / "cert.pem", tmp_path / "key.pem"
+    cert.write_text(made.tls_ca_file)
+    key.write_text(made.tls_client_key)
+    roles = {f"tls_{role}_{part}": str(path) for role in ("scheduler", "worker", "client")
+             for part, path in (("cert", cert), ("key", key))}
+    security = Security(tls_ca_file=str(cert), require_encryption=True, **roles)
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, host="127.0.0.1", security=security,
+                      dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+                      worker_dashboard_address="127.0.0.1:0") as cluster:
+        yield cluster.scheduler_address, {"distributed.comm.tls.ca-file": str(cert),
+                                          "distributed.comm.tls.client.cert": str(cert),
+                                          "distributed.comm.tls.client.key": str(key)}
+
+
+def test_a_tls_scheduler_takes_the_client_credentials_from_dask_configuration(tls_scheduler):
+    import time
+
+    import dask
+
+    from hamta.core.batch.runner import SchedulerError, scheduler_map
+
+    address, credentials = tls_scheduler
+    with dask.config.set(credentials):
+        with scheduler_map(address) as map_chunks:
+            assert map_chunks(abs, [-1, -2]) == [1, 2]
+        t0 = time.perf_counter()
+        with pytest.raises(SchedulerError, match="tls://127.0.0.1:1 did not accept a connection"):
+            scheduler_map("tls://127.0.0.1:1").__enter__()
+        assert time.perf_counter() - t0 < 15
+    with pytest.raises(SchedulerError, match=f"{address} needs TLS credentials.*distributed.comm.tls.ca-file"):
+        scheduler_map(address).__enter__()
+
+
+def test_an_unreachable_or_plain_tcp_scheduler_is_named_plainly(caplog):
+    import time
+
+    from hamta.core.batch.runner import SchedulerError
+
+    t0 = time.perf_counter()
+    with pytest.raises(SchedulerError, match="tcp://127.0.0.1:1 did not accept a connection within 5 s"):
+        run_batch([_job("t", "/nowhere")], SIFT, scheduler="tcp://127.0.0.1:1")
+    assert time.perf_counter() - t0 < 15
+    assert "tcp://127.0.0.1:1 is unauthenticated" in caplog.text
+
+
+def _job(name, out):
+    from hamta.core.batch.jobs import Job
+
+    return Job(f"/nowhere/{name}.tif", "/nowhere/reference.tif", os.path.join(out, name))
+
+
+@pytest.mark.parametrize("workers", [0, -2])
+def test_a_local_cluster_of_no_workers_is_refused(workers):
+    with pytest.raises(ValueError, match="workers must be a whole number of at least 1"):
+        run_batch([_job("t", "/nowhere")], SIFT, workers=workers)
+
+
+def _job_list(tmp_path, demo_pair, *outputs):
+    path = tmp_path / "jobs.csv"
+    path.write_text("target,reference,output\n" + "".join(f"{demo_pair['target']},{demo_pair['reference']},{o}\n"
+                                                          for o in outputs))
+    return str(path)
+
+
+@pytest.mark.parametrize("output", ["../../escape", "/tmp/outside", "a/../../escape", ".", "a/.."])
+def test_a_job_list_output_outside_out_is_refused(output, tmp_path, demo_pair):
+    jobs = _job_list(tmp_path, demo_pair, "fine", output)
+    with pytest.raises(InputError, match=rf"Row 2 of the job list '{jobs}': the output '{output}' is not a folder "
+                                         rf"inside the output folder '{tmp_path / 'out'}'"):
+        read_jobs(jobs, str(tmp_path / "out"))
+
+
+def test_two_rows_with_one_output_are_refused_and_named_names_avoid_outputs(tmp_path, demo_pair):
+    jobs = _job_list(tmp_path, demo_pair, "a", "b", "x/../a/")
+    with pytest.raises(InputError, match=rf"Rows 1 and 3 of the job list '{jobs}' have the same output folder "
+                                         rf"'{tmp_path / 'out' / 'a'}'"):
+        read_jobs(jobs, str(tmp_path / "out"))
+    jobs = _job_list(tmp_path, demo_pair, "", "target", "deep/inside")
+    assert [j.out for j in read_jobs(jobs, str(tmp_path / "out"))] == [
+        str(tmp_path / "out" / "target-2"), str(tmp_path / "out" / "target"), str(tmp_path / "out" / "deep/inside")]
+
+
+def test_a_csv_row_with_more_fields_than_the_header_is_named(tmp_path, demo_pair):
+    jobs = tmp_path / "jobs.csv"
+    jobs.write_text(f"target,reference\n{demo_pair['target']},{demo_pair['reference']}\n"
+                    f"{demo_pair['target']},{demo_pair['reference']},sift,oops\n")
+    with pytest.raises(InputError, match=rf"Row 2 \(line 3\) of the job list '{jobs}' has 4 fields, more than the 2 "
+                                         "columns of its header"):
+        read_jobs(str(jobs), str(tmp_path / "out"))
+
+
+def test_only_a_verified_pair_carries_an_error_bound(tmp_path, demo_pair, monkeypatch):
+    import importlib
+
+    from hamta.core.batch.jobs import jobs_for_targets
+    from hamta.core.batch.task import failed_record, from_report, register_job
+
+    job = jobs_for_targets([demo_pair["target"]], demo_pair["reference"], str(tmp_path / "out"))[0]
+    verified = register_job(job, SIFT)
+    assert verified["status"] == "verified" and 0 < verified["error_bound_px"] < 3
+    path = os.path.join(job.out, "report.json")
+    report = json.loads(open(path).read())
+    for verdict in ("suspect", "failed"):
+        report["quality"].update(verdict=verdict, error_bound_px=0.97)
+        with open(path, "w") as f:
+            json.dump(report, f)
+        record = from_report(job, "sift", 1.0)
+        assert (record["status"], record["verdict"], record["error_bound_px"]) == ("unverified", verdict, None)
+    failed = failed_record(job, "sift", 1.0, "no luck")
+    assert (failed["status"], failed["verdict"], failed["error_bound_px"]) == ("failed", None, None)
+
+    def silent_failure(*args, **kwargs):
+        raise ValueError()
+
+    monkeypatch.setattr(importlib.import_module("hamta.core.run"), "run", silent_failure)
+    other = jobs_for_targets([demo_pair["target"]], demo_pair["reference"], str(tmp_path / "other"))[0]
+    record = register_job(other, SIFT)
+    assert (record["status"], record["message"], record["error_bound_px"]) == ("failed", "ValueError", None)

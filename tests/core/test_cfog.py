@@ -56,7 +56,7 @@ def test_product_registers_the_multimodal_proxy(tmp_path, shared, mapping):
 def test_product_registers_the_real_sar_optical_pair_within_3_px(tmp_path, shared):
     case = build_case(CaseSpec("pairs", "sar_optical", {"pair": "sar_optical"}), str(tmp_path), 0,
                       str(shared / "data"))
-    result = register(case.target, case.reference, "cfog")
+    result = register(case.target, case.reference, "cfog", options=RegisterOptions(pixel_mode=True))
     assert np.sqrt(np.mean(case.errors(result.model) ** 2)) <= 3.0
 
 

@@ -98,6 +98,7 @@ def test_an_unverified_result_exits_3_and_writes_only_its_report(tmp_path, demo_
                "--tolerance", "0.01", "--out", str(out), "--quiet"])
     captured = capsys.readouterr()
     assert rc == 3 and "NOT VERIFIED" in captured.out and "No georeferenced output" in captured.err
+    assert "(--accept-unverified)" in captured.err
     assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["report.html", "report.json"]
     report = json.loads((out / "report.json").read_text())
     assert report["quality"]["verdict"] != "verified" and report["quality"]["reasons"]
@@ -122,3 +123,36 @@ def test_auto_is_the_default_and_lists_what_it_tried(tmp_path, demo_pair, capsys
                str(tmp_path / "a"), "--quiet"])
     printed = capsys.readouterr().out
     assert rc == 0 and "* tried sift: verified" in printed and "result: verified" in printed
+
+
+def test_a_reference_without_georeferencing_needs_pixel_mode(tmp_path, demo_pair, capsys):
+    import cv2
+    import rasterio
+
+    with rasterio.open(demo_pair["reference"]) as ds:
+        plain = str(tmp_path / "plain.png")
+        cv2.imwrite(plain, ds.read().transpose(1, 2, 0)[:, :, ::-1])
+    out = tmp_path / "o"
+    rc = main(["register", "--reference", plain, "--target", demo_pair["target"], "--method", "sift", "--out", str(out),
+               "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 1 and "plain.png' has no georeferencing" in err and "--pixel-mode" in err and not out.exists()
+    rc = main(["register", "--reference", plain, "--target", demo_pair["target"], "--method", "sift", "--out", str(out),
+               "--quiet", "--pixel-mode"])
+    printed = capsys.readouterr().out
+    assert rc == 0 and "pixel-to-pixel registration" in printed
+    with rasterio.open(out / "registered.tif") as ds:
+        assert ds.crs is None and "no CRS" in ds.tags()["HAMTA_PIXEL_MODE"]
+    assert (out / "gcps.points").read_text().startswith("#CRS: \n")
+    assert "Pixel-to-pixel" in (out / "report.html").read_text()
+    assert json.loads((out / "report.json").read_text())["reference"]["pixel_mode"] is True
+
+
+def test_the_counts_add_up(tmp_path, demo_pair, capsys):
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+               "--out", str(tmp_path / "o"), "--quiet"])
+    line = next(t for t in capsys.readouterr().out.splitlines() if "GCPs" in t)
+    report = json.loads((tmp_path / "o" / "report.json").read_text())["stats"]
+    words = line.split(": ", 1)[1].split()
+    kept, pool = int(words[0]), int(words[4])
+    assert rc == 0 and kept == report["n_gcps"] <= pool

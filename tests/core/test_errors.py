@@ -49,7 +49,7 @@ def test_map_required_but_no_georeferencing(raster_writer):
     ref = raster_writer("ref.tif", _texture(1))
     tgt = raster_writer("tgt.tif", _texture(2))
     with pytest.raises(GeoreferencingError, match=r"target raster '.*tgt.tif' has no georeferencing"):
-        register(tgt, ref, options=RegisterOptions(target_georef="use"))
+        register(tgt, ref, options=RegisterOptions(target_georef="use", pixel_mode=True))
 
 
 def test_all_nodata(raster_writer, demo_pair):

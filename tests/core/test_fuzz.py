@@ -33,8 +33,8 @@ from hamta.core.coords import apply_matrix, matrix_corner_to_opencv  # noqa: E40
 # The bounded profile (make test) does not shrink a failure: it reports the first failing example as drawn.
 settings.register_profile("bounded", max_examples=12, deadline=None, derandomize=True,
                           suppress_health_check=list(HealthCheck), phases=(Phase.explicit, Phase.generate))
-settings.register_profile("long", max_examples=2000, deadline=None, suppress_health_check=list(HealthCheck),
-                          phases=(Phase.explicit, Phase.generate))
+settings.register_profile("long", max_examples=int(os.environ.get("HAMTA_FUZZ_EXAMPLES", 2000)), deadline=None,
+                          suppress_health_check=list(HealthCheck), phases=(Phase.explicit, Phase.generate))
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "bounded"))
 
 EXIT_CODES = {0, 1, 2, 3}
@@ -247,4 +247,47 @@ def test_map_points_never_breaks_on_any_report(report, coords, capsys):
         err = capsys.readouterr().err
     failures = _failures([(rc in {0, 1, 2} and "Traceback" not in err, err)])
     _record(method="map-points", rc=rc, kind="report", message=err.strip()[-200:], failures=failures)
+    _settle(failures)
+
+
+def _on_earth(crs, transform, size) -> bool:
+    """The oracle: whether a ``size`` px square raster with ``transform`` has a place on the Earth in ``crs``."""
+    from pyproj import CRS, Transformer
+
+    corners = np.array([transform * (x, y) for x in (0, size) for y in (0, size)], float)
+    pcrs = CRS.from_user_input(crs)
+    if pcrs.is_geographic:
+        return bool(np.abs(corners[:, 1]).max() <= 90.0 + 0.5 * abs(transform.e) + 1e-9)
+    lon, lat = Transformer.from_crs(pcrs, pcrs.geodetic_crs, always_xy=True).transform(
+        corners[:, 0], corners[:, 1], errcheck=False)
+    return bool(np.isfinite(lon).all() and np.isfinite(lat).all() and np.abs(lat).max() <= 90.0)
+
+
+@given(crs=st.sampled_from([None, "EPSG:4326", "EPSG:32639", "EPSG:3857", "EPSG:3031"]),
+       origin=st.tuples(st.floats(-1e8, 1e8), st.floats(-1e8, 1e8)) | st.tuples(st.floats(-400, 400),
+                                                                               st.floats(-200, 200)),
+       pixel=st.floats(1e-6, 1e5), pixel_mode=st.booleans())
+def test_any_reference_georeferencing_is_checked(crs, origin, pixel, pixel_mode, capsys):
+    size = 240
+    transform = Affine(pixel, 0.0, origin[0], 0.0, -pixel, origin[1])
+    with tempfile.TemporaryDirectory() as tmp:
+        ref, tgt = os.path.join(tmp, "reference.tif"), os.path.join(tmp, "target.tif")
+        image = make_landscape((size, size), seed=5)
+        georef = {} if crs is None else {"crs": crs, "transform": transform}
+        with rasterio.open(ref, "w", driver="GTiff", width=size, height=size, count=3, dtype="uint8",
+                           photometric="RGB", **georef) as dst:
+            dst.write(image)
+        with rasterio.open(tgt, "w", driver="GTiff", width=180, height=180, count=3, dtype="uint8",
+                           photometric="RGB") as dst:
+            dst.write(image[:, 30:210, 40:220])
+        rc = _cli(["register", "--reference", ref, "--target", tgt, "--out", os.path.join(tmp, "o"), "--quiet",
+                   "--method", "sift", *(["--pixel-mode"] if pixel_mode else [])])
+        err = capsys.readouterr().err
+    valid = crs is None or _on_earth(crs, transform, size)
+    failures = _failures([
+        (rc in EXIT_CODES and "Traceback" not in err and "internal error" not in err, err),
+        (valid or (rc == 1 and "is georeferenced" in err), f"exit {rc} on georeferencing off the Earth: {err}"),
+        (crs is not None or pixel_mode or (rc == 1 and "--pixel-mode" in err), f"exit {rc} without georeferencing")])
+    _record(method="georef", rc=rc, kind="reference-georef", crs=crs, valid=valid, message=err.strip()[-200:],
+            failures=failures)
     _settle(failures)

@@ -2,12 +2,15 @@
 shown, the target warped correctly onto the reference for any model type, previews bounded."""
 import base64
 import dataclasses
+import datetime
 import html
 import re
 
 import cv2
 import numpy as np
 import pytest
+from affine import Affine
+from rasterio.crs import CRS
 
 from hamta.core import RegisterOptions, register
 from hamta.core.errors import RegistrationCanceled
@@ -157,3 +160,111 @@ def test_cancel_writes_nothing(sift_result, tmp_path):
     with pytest.raises(RegistrationCanceled):
         write_html_report(str(path), sift_result, Monitor(is_canceled=lambda: True))
     assert not path.exists()
+
+
+# ---------------------------------------------------------------------------------------------- for the analyst
+
+
+def _section(text: str, number: int) -> str:
+    start = text.index(f"<h2>{number}.")
+    end = text.find("<h2>", start + 4)
+    return text[start:end if end >= 0 else len(text)]
+
+
+def _visible(text: str) -> str:
+    """The text a reader sees without opening a <details> element: tags, folded parts and images removed."""
+    text = re.sub(r"<details.*?</details>", " ", text, flags=re.S)
+    text = re.sub(r"<(style|title)>.*?</\1>", " ", text, flags=re.S)
+    text = re.sub(r"</?(b|code|span|time)\b[^>]*>", "", text)  # inline: no word break
+    return " ".join(html.unescape(re.sub(r"<[^>]+>", " ", text)).split())
+
+
+def test_crs_map_units_pixel_sizes_and_date(sift_result, tmp_path):
+    before = datetime.datetime.now(datetime.timezone.utc).replace(microsecond=0)
+    text = _write(sift_result, tmp_path)
+    ref, v, rmse = sift_result.reference, sift_result.verification, sift_result.stats["rmse_px"]
+    assert ref.crs.to_epsg() == 32639 and ref.pixel_size == 10.0
+    assert "WGS 84 / UTM zone 39N (EPSG:32639)" in text and "unit: metre" in text
+    assert "10.00 m per px" in text  # the reference's pixel size
+    assert "not georeferenced" in text  # the demo target has no georeferencing of its own
+    # The target's pixel size as registered: the affine model's scale times the reference's.
+    k = np.sqrt(abs(np.linalg.det(np.asarray(sift_result.model.matrix)[:2, :2])))
+    assert f"{k * 10:.2f} m per px" in text
+    # Residuals in reference px and in metres, side by side.
+    assert f"{rmse:.3f} px ({rmse * 10:.2f} m)" in text
+    assert f"{v.error_bound_px:.2f} px ({v.error_bound_px * 10:.2f} m)" in text
+    assert f"{v.tolerance_px:.2f} px ({v.tolerance_px * 10:.2f} m)" in text
+    assert "map X (reference CRS, m)" in text and "residual (m)" in text
+    assert "Pixel-to-pixel" not in text and "pixel mode" not in text
+    stamp = re.search(r'<time datetime="(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)">\1</time>', text)
+    assert stamp, "an ISO 8601 UTC date"
+    when = datetime.datetime.strptime(stamp.group(1), "%Y-%m-%dT%H:%M:%SZ").replace(tzinfo=datetime.timezone.utc)
+    assert before <= when <= datetime.datetime.now(datetime.timezone.utc)
+
+
+def test_outputs_are_listed_and_file_names_escaped(sift_result, tmp_path, demo_pair):
+    hostile = '<img src=x onerror="alert(1)"> & co'
+    target = tmp_path / f"{hostile}.tif"
+    target.symlink_to(demo_pair["target"])
+    result = dataclasses.replace(sift_result, target=dataclasses.replace(sift_result.target, path=str(target)))
+    outputs = {"raster": str(tmp_path / f"{hostile}-registered.tif"), "report": "/out/report.json",
+               "html": "/out/report.html"}
+    path = tmp_path / "report.html"
+    write_html_report(str(path), result, outputs=outputs)
+    text = path.read_text(encoding="utf-8")
+    assert hostile not in text and "onerror=\"alert" not in text
+    assert html.escape(f"{hostile}.tif") in text
+    assert f"registered raster: <code>{html.escape(outputs['raster'])}</code>" in text
+    assert "report (JSON): <code>/out/report.json</code>" in text
+    assert "this report: <code>/out/report.html</code>" in text
+    assert "files written" not in _write(sift_result, tmp_path, "plain.html")  # no list without outputs
+
+
+def test_verification_is_told_in_plain_words(sift_result, tmp_path):
+    text = _write(sift_result, tmp_path)
+    v = sift_result.verification
+    section = _section(text, 4)
+    seen = _visible(section)
+    assert f"At {v.n_agree} of {v.n_sites} sites checked, the two images line up where the model puts them" in seen
+    assert "the agreement is real" in seen
+    for jargon in ("lift", "mann", "chance", "zero-offset", "p-value"):
+        assert jargon not in _visible(text).lower(), jargon
+    # The technical numbers stay available, folded.
+    details = re.search(r"<details.*?</details>", section, flags=re.S).group(0)
+    assert "Mann–Whitney p" in details and "chance rate per site" in details
+    assert f"{v.z_hits} / " in details
+
+
+def test_unverified_result_is_told_in_plain_words(demo_pair, tmp_path):
+    result = register(demo_pair["target"], demo_pair["reference"], method="sift",
+                      options=RegisterOptions(tolerance_px=0.01))
+    seen = _visible(_write(result, tmp_path))
+    assert "the accuracy asked for was 0.01 px (0.10 m)" in seen
+    for jargon in ("lift", "mann", "chance"):
+        assert jargon not in seen.lower(), jargon
+
+
+def test_pixel_mode_has_a_banner_and_no_map_units(sift_result, tmp_path):
+    reference = dataclasses.replace(sift_result.reference, crs=None, transform=Affine.identity(), georef_source="none")
+    result = dataclasses.replace(sift_result, reference=reference)
+    assert result.pixel_mode
+    text = _write(result, tmp_path)
+    banner = re.search(r"<div class=banner>([^<]*)</div>", text)
+    assert banner and banner.group(1) == report_html.PIXEL_MODE_BANNER
+    assert text.index("class=banner") < text.index("class=verdict")  # near the top
+    assert "Pixel-to-pixel registration: the reference has no georeferencing" in banner.group(1)
+    assert "reference CRS</th><td>none (pixel mode)" in text
+    assert "EPSG" not in text and " m)" not in text and " m per px" not in text and "metre" not in text
+    assert "map X (reference px)" in text and "residual (m)" not in text
+    rmse = result.stats["rmse_px"]
+    assert f"{rmse:.3f} px</td>" in text
+
+
+def test_describe_crs_names_code_and_unit():
+    assert report_html.describe_crs(CRS.from_epsg(32632)) == ("WGS 84 / UTM zone 32N (EPSG:32632)", "metre")
+    assert report_html.describe_crs(CRS.from_epsg(4326)) == ("WGS 84 (EPSG:4326)", "degree")
+    name, unit = report_html.describe_crs(CRS.from_proj4("+proj=tmerc +lon_0=13.3 +ellps=GRS80 +units=us-ft"))
+    assert name.endswith("(no EPSG code)") and unit == "US survey foot"
+    scale = report_html.MapScale("WGS 84 (EPSG:4326)", "degree", 1e-4)
+    assert scale.px(0.5) == "0.000050°"
+    assert report_html.MapScale("x", "US survey foot", 2.0).px(1.25) == "2.50 US ft"

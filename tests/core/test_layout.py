@@ -126,3 +126,22 @@ def _owner(name, known):
     while name and name not in known:
         name = name.rpartition(".")[0]
     return name or None
+
+
+def test_lint_passes_in_a_clone_named_hamta(tmp_path):
+    """The README installs from a clone named ``hamta``; ruff then reads the root as package ``hamta``."""
+    import shutil
+
+    ruff = shutil.which("ruff", path=str(pathlib.Path(sys.executable).parent))
+    if ruff is None:
+        import pytest
+
+        pytest.skip("ruff is not installed in this interpreter's environment (the PyPI-wheels half lints)")
+    files = subprocess.run(["git", "ls-files"], cwd=REPO, capture_output=True, text=True, check=True).stdout.split()
+    clone = tmp_path / "hamta"
+    for name in files:
+        if name.endswith((".py", ".toml")):
+            (clone / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy(REPO / name, clone / name)
+    run = subprocess.run([ruff, "check", "--no-cache", "."], cwd=clone, capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout + run.stderr

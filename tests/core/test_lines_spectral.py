@@ -187,7 +187,8 @@ def test_faithful_pipeline_matches_intersections_mutually_and_registers_or_says_
     assert len(np.unique(m.target_xy, axis=0)) == len(m) == len(np.unique(m.reference_xy, axis=0))
     for method in ("lines-spectral-faithful", "lines-eigen", "lines-vspm"):
         try:
-            assert register(case.target, case.reference, method).stats["n_gcps"] >= 5
+            options = RegisterOptions(pixel_mode=True)
+            assert register(case.target, case.reference, method, options=options).stats["n_gcps"] >= 5
         except InsufficientMatchesError as exc:  # the usual outcome: the thesis's lines rarely repeat
             assert "agree on one affine transform" in str(exc) and len(exc.correspondences) >= 3
 

@@ -46,3 +46,29 @@ def test_ransac_fails_clearly_without_consensus():
     rng = np.random.default_rng(0)
     with pytest.raises(ValueError, match="needs at least 4"):
         ransac(rng.random((3, 2)), rng.random((3, 2)), "projective", threshold_px=1.0)
+
+
+def test_the_gcps_hold_no_place_twice():
+    from hamta.core.estimation.models import fit_model
+    from hamta.core.estimation.robust import Estimate, final_fit
+    from hamta.core.types import Correspondences
+
+    rng = np.random.default_rng(3)
+    tgt = rng.uniform(0, 500, (40, 2))
+    tgt = np.vstack([tgt, tgt[:5], tgt[5:8] + [[0.0, 0.0]]])  # 8 exact repeats
+    ref = tgt * 1.1 + [20.0, -7.0]
+    ref[-3:] += 0.2  # one target pixel matched to two reference pixels: keep the better scored
+    score = np.r_[np.ones(40), np.full(5, 0.5), np.full(3, 2.0)]
+    points = Correspondences(tgt, ref, score, np.ones(len(tgt), bool))
+    fit = final_fit("affine", Estimate(fit_model("affine", tgt, ref), points, 1.0), 500, None)
+    used_t, used_r = tgt[fit.used], ref[fit.used]
+    assert len(fit.used) == 40
+    assert len(np.unique(used_t, axis=0)) == len(np.unique(used_r, axis=0)) == 40
+    assert set(fit.used[np.isin(fit.used, [5, 6, 7])]) == set() and {45, 46, 47} <= set(fit.used)
+    from hamta.core.result import make_gcps
+
+    points.inlier[[10, 11, 40]] = False  # rejected points are listed, but not at a GCP's place (40 is at 0's)
+    fit = final_fit("affine", Estimate(fit_model("affine", tgt, ref), points, 1.0), 500, None)
+    gcps = make_gcps(fit, lambda xy: xy)
+    assert len({g.target_px for g in gcps}) == len({g.reference_px for g in gcps}) == len(gcps)
+    assert sum(not g.enabled for g in gcps) == 2

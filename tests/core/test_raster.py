@@ -101,3 +101,17 @@ def test_budget_shape_bounds_the_pixel_count():
     (rows, cols), factor = budget_shape(10980, 10980, 4_000_000)
     assert rows * cols <= 4_000_000 * 1.001 and factor > 5
     assert budget_shape(100, 50, 4_000_000) == ((50, 100), 1.0)
+
+
+def test_nodata_beside_an_alpha_band_reads_without_a_warning(raster_writer):
+    import warnings
+
+    data = np.random.default_rng(0).integers(1, 255, (4, 64, 64)).astype("uint8")
+    path = raster_writer("rgba.tif", data, nodata=0, crs="EPSG:32632", transform=Affine(1, 0, 10, 0, -1, 0),
+                         photometric="RGB", alpha="YES")
+    info = open_raster(path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        warnings.simplefilter("ignore", PendingDeprecationWarning)
+        image, valid = read_image(info, (1, 2, 3), window=Window(-5, -5, 80, 80))
+    assert image.shape == (80, 80) and valid.sum() == 64 * 64

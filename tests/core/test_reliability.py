@@ -67,6 +67,8 @@ def _bad_target(kind, folder, pair):
         path.write_text(f'<VRTDataset rasterXSize="64" rasterYSize="64"><VRTRasterBand dataType="Byte" band="1">'
                         f'<SimpleSource><SourceFilename relativeToVRT="0">{path}</SourceFilename>'
                         '<SourceBand>1</SourceBand></SimpleSource></VRTRasterBand></VRTDataset>')
+    elif kind == "fifo":
+        os.mkfifo(path)
     elif kind == "constant":
         _write(path, np.full((200, 200), 9, np.uint8))
     elif kind == "all-nodata":
@@ -87,6 +89,7 @@ INPUT_CASES = {
     "constant": (1, "is constant"),
     "all-nodata": (1, "no valid pixels"),
     "too-small": (1, "too small to register"),
+    "fifo": (1, "not a regular file"),
 }
 
 
@@ -302,6 +305,7 @@ MAP_CASES = {
                      "reference": {"transform": [0, 1, 0, 0, 0, -1]}}, 1, "finite coordinates|cannot be evaluated"),
     "nan-matrix": ({"model": {"type": "affine", "target_px_to_reference_px": [[float("nan")] * 3] * 3},
                     "reference": {"transform": [0, 1, 0, 0, 0, -1]}}, 1, "finite coordinates|cannot be evaluated"),
+    "deeply-nested": ("[" * 100000 + "]" * 100000, 1, "not readable JSON|not a Hamta report"),
     "bad-crs": ({"model": {"type": "affine", "frame": "target_crs", "frame_crs": "EPSG:nope",
                            "frame_transform": [0, 1, 0, 0, 0, -1], "target_px_to_frame_px": np.eye(3).tolist()},
                  "reference": {"transform": [0, 1, 0, 0, 0, -1], "crs": "EPSG:32639"}}, 1, "report"),
@@ -359,3 +363,71 @@ def test_thin_strips_end_with_a_message(method, shape, pattern, tmp_path, pair, 
     rc = main(_register(pair, tmp_path / "out", "--method", method, target=strip))
     err = capsys.readouterr().err
     assert rc == 1 and pattern in err and strip in err and "Traceback" not in err, err
+
+
+def test_a_complex_int16_target_is_registered_and_warped(tmp_path, pair, capsys):
+    with rasterio.open(pair["target"]) as ds:
+        amplitude = ds.read(1).astype(np.complex64)
+    target = _write(tmp_path / "cint16.tif", amplitude, dtype="complex_int16")
+    rc = main(_register(pair, tmp_path / "out", "--method", "sift", target=target))
+    assert rc == 0, capsys.readouterr().err
+    with rasterio.open(tmp_path / "out" / "registered.tif") as ds:
+        assert ds.dtypes[0] == "complex_int16" and ds.crs is not None
+
+
+def test_a_reference_georeferenced_beyond_the_pole_is_refused(tmp_path, pair, capsys):
+    from affine import Affine
+
+    with rasterio.open(pair["reference"]) as ds:
+        data = ds.read()
+    reference = _write(tmp_path / "pole.tif", data, crs="EPSG:4326", transform=Affine(0.01, 0, 10, 0, -0.01, 95))
+    rc = main(_register(pair, tmp_path / "out", reference=reference))
+    err = capsys.readouterr().err
+    assert rc == 1 and "pole.tif' is georeferenced beyond the pole" in err and not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("where", ["target", "report"])
+def test_very_long_input_paths_are_named_not_crashed_on(where, tmp_path, pair, capsys):
+    long = str(tmp_path / ("x" * 300)) + ("/" + "y" * 200) * 25
+    args = (["map-points", long + ".json", "1", "2"] if where == "report"
+            else _register(pair, tmp_path / "out", target=long + ".tif"))
+    rc = main(args)
+    err = capsys.readouterr().err
+    assert rc == 1 and "does not exist" in err and "internal error" not in err
+
+
+# hamta batch: (job list rows as "{target},{reference},output" templates, or None for the target as a pattern with
+# --reference; extra arguments) -> (exit code, message pattern); each is refused before any work.
+BATCH_CASES = {
+    "zero-workers": (None, ["--workers", "0"], 2, "--workers must be at least 1"),
+    "negative-workers": (None, ["--workers", "-2"], 2, "--workers must be at least 1"),
+    "unreachable-tcp": (None, ["--scheduler", "tcp://127.0.0.1:1"], 1, "tcp://127.0.0.1:1 did not accept a connection"),
+    "unreachable-tls": (None, ["--scheduler", "tls://127.0.0.1:1"], 1, "tls://127.0.0.1:1 needs TLS credentials"),
+    "extra-fields": (["{target},{reference},out,surplus"], [], 1,
+                     r"Row 1 \(line 2\) of the job list '{jobs}' has 4 fields, more than the 3 columns"),
+    "output-escapes": (["{target},{reference},../../escape"], [], 1,
+                       "Row 1 of the job list '{jobs}': the output '../../escape' is not a folder inside"),
+    "output-absolute": (["{target},{reference},{outside}"], [], 1,
+                        "Row 1 of the job list '{jobs}': the output '{outside}' is not a folder inside"),
+    "same-output": (["{target},{reference},a", "{target},{reference},b/../a"], [], 1,
+                    "Rows 1 and 2 of the job list '{jobs}' have the same output folder"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BATCH_CASES))
+def test_bad_batches_are_refused_before_any_work(case, tmp_path, pair, capsys):
+    rows, extra, code, pattern = BATCH_CASES[case]
+    out, jobs, outside = tmp_path / "out", tmp_path / "jobs.csv", tmp_path / "outside"
+    if rows is None:
+        source = [str(pair["target"]), "--reference", str(pair["reference"])]
+    else:
+        jobs.write_text("target,reference,output\n" + "".join(
+            row.format(target=pair["target"], reference=pair["reference"], outside=outside) + "\n" for row in rows))
+        source = [str(jobs)]
+    t0 = time.perf_counter()
+    rc = main(["batch", *source, "--out", str(out), "--quiet", *extra])
+    err = capsys.readouterr().err
+    assert rc == code and "Traceback" not in err and "internal error" not in err, err
+    escape = __import__("re").escape
+    assert __import__("re").search(pattern.format(jobs=escape(str(jobs)), outside=escape(str(outside))), err), err
+    assert not out.exists() and not outside.exists() and time.perf_counter() - t0 < 20

@@ -6,6 +6,7 @@ from affine import Affine
 
 from hamta.bench.cases import reprojected_case, similarity_case
 from hamta.core import RegisterOptions, register
+from hamta.core.errors import ReferenceNotGeoreferenced
 from hamta.core.io.raster import open_raster, resolve_bands
 from hamta.core.io.working import prepare_working_images
 from hamta.core.outputs import OutputPaths, write_outputs
@@ -60,7 +61,9 @@ def test_pixel_mode_without_reference_georeferencing(tmp_path, landsat):
                        dtype="uint8", photometric="RGB") as dst:
         dst.write(data)
     case = similarity_case(str(tmp_path), plain_ref, angle_deg=-8.0, scale=0.9, shift_px=(4.0, -6.0))
-    res = register(case.target, case.reference, options=RegisterOptions(model="affine"))
+    with pytest.raises(ReferenceNotGeoreferenced, match="has no georeferencing"):
+        register(case.target, case.reference, options=RegisterOptions(model="affine"))
+    res = register(case.target, case.reference, options=RegisterOptions(model="affine", pixel_mode=True))
     assert res.plan.mode == "pixel" and res.pixel_mode
     assert np.sqrt(np.mean(case.errors(res.model) ** 2)) < 0.5
     g = res.gcps[0]

@@ -48,7 +48,7 @@ def test_rotation_invariant_descriptors_match_across_a_turn():
 @pytest.mark.parametrize("category,pair", [("mm-infrared", 1), ("mm-night", 13), ("mm-map", 1)])
 def test_xmodal_registers_real_cross_modal_pairs_and_the_check_verifies_them(shared, category, pair):
     case = build(category, pair, str(shared / "data"))
-    result = register(case.target, case.reference, "xmodal", options=RegisterOptions(tolerance_px=15))
+    result = register(case.target, case.reference, "xmodal", options=RegisterOptions(tolerance_px=15, pixel_mode=True))
     error = math.sqrt(np.mean(case.errors(result.model) ** 2))
     assert error < 5.0 and result.verified, (error, result.verification.reasons)
     assert result.diagnostics["local_inliers"] >= 20
@@ -61,7 +61,7 @@ def test_xmodal_handles_a_further_half_turn(shared, tmp_path, raster_writer):
     with rasterio.open(case.target) as ds:
         data = ds.read()
     turned = raster_writer("turned.tif", np.ascontiguousarray(data[:, ::-1, ::-1]))
-    result = register(turned, case.reference, "xmodal", options=RegisterOptions(tolerance_px=15))
+    result = register(turned, case.reference, "xmodal", options=RegisterOptions(tolerance_px=15, pixel_mode=True))
     h, w = data.shape[1:]
     pts = case.check_points
     flipped = np.column_stack([w - pts[:, 0], h - pts[:, 1]])  # the same ground points in the turned target
@@ -71,6 +71,6 @@ def test_xmodal_handles_a_further_half_turn(shared, tmp_path, raster_writer):
 
 def test_rift_baseline_matches_a_pair_without_scale_change(shared):
     case = build("mm-map", 1, str(shared / "data"))
-    result = register(case.target, case.reference, "rift", options=RegisterOptions(tolerance_px=15))
+    result = register(case.target, case.reference, "rift", options=RegisterOptions(tolerance_px=15, pixel_mode=True))
     assert math.sqrt(np.mean(case.errors(result.model) ** 2)) < 10.0
     assert result.stats["n_inliers"] >= 20

@@ -224,3 +224,23 @@ def test_output_control_vrt_crs_html_and_creation_options(provider, demo_pair, t
     with rasterio.open(res["OUTPUT"]) as ds:
         assert ds.compression.name == "lzw" and ds.nodata == 255 and ds.overviews(1)
         assert ds.block_shapes[0] == (512, 512)
+
+
+def test_a_reference_without_georeferencing_needs_the_pixel_mode_box(provider, demo_pair, tmp_path):
+    import cv2
+    import rasterio
+
+    with rasterio.open(demo_pair["reference"]) as ds:
+        plain = str(tmp_path / "plain.png")
+        cv2.imwrite(plain, ds.read().transpose(1, 2, 0)[:, :, ::-1])
+    params = {"TARGET": demo_pair["target"], "REFERENCE": plain, "OUTPUT": str(tmp_path / "o.tif"),
+              "GCP_LAYER": str(tmp_path / "g.gpkg")}
+    with pytest.raises(QgsProcessingException, match=r"plain\.png' has no georeferencing.*\(set 'Pixel-to-pixel"):
+        _run(params)
+    assert not (tmp_path / "o.tif").exists()
+    feedback = QgsProcessingFeedback()
+    warnings = []
+    feedback.pushWarning = warnings.append
+    result = _run(dict(params, PIXEL_MODE=True), feedback)
+    assert result["VERDICT"] == "verified" and any("pixel-to-pixel" in w for w in warnings)
+    assert QgsRasterLayer(result["OUTPUT"], "o").crs().isValid() is False
