@@ -25,9 +25,10 @@ lint: $(VENV)/.ok
 test-wheels: $(VENV)/.ok
 	$(VENV)/bin/python -P -m pytest tests/core -q -rs
 
-# Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...).
+# Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...);
+# the wheel build and the end-to-end benchmark run on the PyPI-wheels half only (make bench runs there).
 test-debian: $(QVENV)/.ok
-	$(QVENV)/bin/python -P -m pytest tests -q -rs -m "not packaging"
+	$(QVENV)/bin/python -P -m pytest tests -q -rs -m "not packaging and not bench"
 
 bench: $(VENV)/.ok
 	$(VENV)/bin/hamta bench

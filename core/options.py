@@ -53,7 +53,7 @@ MODEL = Choice("model", {
     "polynomial-2": "Polynomial 2",
     "polynomial-3": "Polynomial 3",
     "tps": "Thin plate spline",
-    "linear": "Linear (scale and shift per axis, no rotation)",
+    "linear": "Linear (scale and shift per axis)",
 }, "affine", aliases={"helmert": "similarity", "polynomial-1": "affine", "poly1": "affine", "poly2": "polynomial-2",
                       "poly3": "polynomial-3", "homography": "projective", "thin-plate-spline": "tps"})
 
@@ -63,8 +63,8 @@ RESAMPLING = Choice("resampling", {
     "cubic": "Cubic",
     "cubicspline": "Cubic B-spline",
     "lanczos": "Lanczos",
-    "average": "Average (of the pixels an output pixel covers)",
-    "mode": "Mode (most frequent value: classes)",
+    "average": "Average",
+    "mode": "Mode (most frequent: classes)",
     "max": "Maximum",
     "min": "Minimum",
     "med": "Median",
@@ -91,14 +91,14 @@ TARGET_GEOREF = Choice("target_georef", {
 }, "auto")
 
 FORMAT = Choice("format", {
-    "auto": "From the file name (.vrt: VRT, otherwise GeoTIFF)",
+    "auto": "From the file name (.vrt or GeoTIFF)",
     "gtiff": "GeoTIFF (tiled, compressed)",
-    "cog": "Cloud-optimised GeoTIFF (with overviews)",
+    "cog": "Cloud-optimised GeoTIFF",
     "vrt": "Warped VRT (no pixels copied)",
 }, "auto", aliases={"geotiff": "gtiff", "tif": "gtiff", "tiff": "gtiff"})
 
 FILL = Choice("fill", {
-    "auto": "Automatic (the target's nodata, NaN for floats, else an alpha band)",
+    "auto": "Automatic (nodata, NaN or an alpha band)",
     "alpha": "Alpha band",
     "nodata": "Nodata value",
 }, "auto")

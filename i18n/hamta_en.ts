@@ -24,7 +24,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="85"/>
+        <location filename="../processing/batch_algorithm.py" line="87"/>
         <source>Job list instead (CSV or GeoPackage: target, reference, method, model, output)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -34,52 +34,52 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="88"/>
+        <location filename="../processing/batch_algorithm.py" line="89"/>
         <source>Method</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="90"/>
+        <location filename="../processing/batch_algorithm.py" line="91"/>
         <source>Transformation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="91"/>
+        <location filename="../processing/batch_algorithm.py" line="92"/>
         <source>Local (non-rigid) correction</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="92"/>
+        <location filename="../processing/batch_algorithm.py" line="93"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="94"/>
+        <location filename="../processing/batch_algorithm.py" line="95"/>
         <source>Accuracy asked for (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="99"/>
+        <location filename="../processing/batch_algorithm.py" line="102"/>
         <source>Workers of the local cluster (0: one per CPU)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="102"/>
+        <location filename="../processing/batch_algorithm.py" line="105"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="103"/>
+        <location filename="../processing/batch_algorithm.py" line="106"/>
         <source>Batch results (footprints)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="115"/>
+        <location filename="../processing/batch_algorithm.py" line="118"/>
         <source>Choose target rasters and a reference raster, or a job list.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="141"/>
+        <location filename="../processing/batch_algorithm.py" line="144"/>
         <source>Batch stopped on an unexpected error ({}: {}).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -91,8 +91,18 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="97"/>
+        <location filename="../processing/batch_algorithm.py" line="100"/>
         <source>Dask scheduler (tls://host:port; empty: a local cluster)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/batch_algorithm.py" line="85"/>
+        <source>Job list instead (CSV or GeoPackage)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/batch_algorithm.py" line="98"/>
+        <source>Dask scheduler (tls://host:port)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -230,257 +240,257 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="118"/>
+        <location filename="../processing/register_algorithm.py" line="128"/>
         <source>Registration</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="130"/>
+        <location filename="../processing/register_algorithm.py" line="140"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="135"/>
+        <location filename="../processing/register_algorithm.py" line="145"/>
         <source>Target raster (to georeference)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="136"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>Reference raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="137"/>
+        <location filename="../processing/register_algorithm.py" line="147"/>
         <source>Transformation</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="138"/>
+        <location filename="../processing/register_algorithm.py" line="148"/>
         <source>Resampling</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="153"/>
+        <location filename="../processing/register_algorithm.py" line="228"/>
         <source>Target band to match (empty: luminance of RGB, else band 1)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="156"/>
+        <location filename="../processing/register_algorithm.py" line="166"/>
         <source>Reference band to match</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="159"/>
+        <location filename="../processing/register_algorithm.py" line="169"/>
         <source>Target&apos;s own georeferencing</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="160"/>
+        <location filename="../processing/register_algorithm.py" line="170"/>
         <source>Output pixel grid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="174"/>
+        <location filename="../processing/register_algorithm.py" line="184"/>
         <source>Full-resolution refinement</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="175"/>
+        <location filename="../processing/register_algorithm.py" line="185"/>
         <source>Working image size (pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="181"/>
+        <location filename="../processing/register_algorithm.py" line="191"/>
         <source>Maximum number of GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="184"/>
+        <location filename="../processing/register_algorithm.py" line="194"/>
         <source>Random seed</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="190"/>
+        <location filename="../processing/register_algorithm.py" line="202"/>
         <source>Georeferenced raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="191"/>
+        <location filename="../processing/register_algorithm.py" line="203"/>
         <source>GCP points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="193"/>
+        <location filename="../processing/register_algorithm.py" line="205"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="193"/>
+        <location filename="../processing/register_algorithm.py" line="205"/>
         <source>GCP points (*.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="196"/>
+        <location filename="../processing/register_algorithm.py" line="208"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="196"/>
+        <location filename="../processing/register_algorithm.py" line="208"/>
         <source>VRT (*.vrt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="199"/>
+        <location filename="../processing/register_algorithm.py" line="211"/>
         <source>Report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="199"/>
+        <location filename="../processing/register_algorithm.py" line="211"/>
         <source>JSON (*.json)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="206"/>
+        <location filename="../processing/register_algorithm.py" line="218"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="207"/>
+        <location filename="../processing/register_algorithm.py" line="219"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="208"/>
+        <location filename="../processing/register_algorithm.py" line="220"/>
         <source>Number of GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="238"/>
+        <location filename="../processing/register_algorithm.py" line="265"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="315"/>
+        <location filename="../processing/register_algorithm.py" line="342"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="386"/>
+        <location filename="../processing/register_algorithm.py" line="413"/>
         <source>Register raster (SIFT baseline)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="387"/>
+        <location filename="../processing/register_algorithm.py" line="414"/>
         <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.
 
 Reference: D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="400"/>
+        <location filename="../processing/register_algorithm.py" line="427"/>
         <source>Register satellite image (RILBP, rotation-invariant)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="401"/>
+        <location filename="../processing/register_algorithm.py" line="428"/>
         <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.
 
 Reference: A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. Konolige and M. R. Blas (2008), CenSurE, ECCV.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="416"/>
+        <location filename="../processing/register_algorithm.py" line="443"/>
         <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="417"/>
+        <location filename="../processing/register_algorithm.py" line="444"/>
         <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.
 
 Reference: M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on selective scale and rotation (SIBRIF).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="431"/>
+        <location filename="../processing/register_algorithm.py" line="458"/>
         <source>Register SAR image onto SAR image (ND-SIFT + phase congruency)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="433"/>
+        <location filename="../processing/register_algorithm.py" line="460"/>
         <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.
 
 Reference: J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters 12(3):562-566, doi:10.1109/LGRS.2014.2351396</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="449"/>
+        <location filename="../processing/register_algorithm.py" line="476"/>
         <source>Register SAR image onto optical image</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="450"/>
+        <location filename="../processing/register_algorithm.py" line="477"/>
         <source>Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale (up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method &apos;lines-spectral-faithful&apos; is the thesis&apos;s line-intersection matcher as written (Radon lines, eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register.
 
 References: S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. thesis, Shahrood University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), Fast and robust matching for multimodal remote sensing image registration, IEEE Transactions on Geoscience and Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150"/>
+        <location filename="../processing/register_algorithm.py" line="227"/>
         <source>Accuracy asked for (reference pixels): verified only within it</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="178"/>
+        <location filename="../processing/register_algorithm.py" line="232"/>
         <source>RANSAC tolerance (working pixels; empty: the method&apos;s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="204"/>
+        <location filename="../processing/register_algorithm.py" line="216"/>
         <source>Verdict of the independent check</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="205"/>
+        <location filename="../processing/register_algorithm.py" line="217"/>
         <source>Method that produced the result</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="318"/>
+        <location filename="../processing/register_algorithm.py" line="345"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="350"/>
+        <location filename="../processing/register_algorithm.py" line="377"/>
         <source>Tried {}: {} ({:.1f} s) - {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="356"/>
+        <location filename="../processing/register_algorithm.py" line="383"/>
         <source>Verified by an independent check: {} of {} sites agree; estimated error within {:.2f} px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="359"/>
+        <location filename="../processing/register_algorithm.py" line="386"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="371"/>
+        <location filename="../processing/register_algorithm.py" line="398"/>
         <source>Register raster (automatic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="372"/>
+        <location filename="../processing/register_algorithm.py" line="399"/>
         <source>Registers the target raster onto the reference raster and chooses the method itself: the fast SIFT matcher first, then matchers for images of different modality (SAR, infrared, maps) and for SAR, until a result passes an independent check. The check compares the two rasters at sites spread over the overlap, not the matches the model was fitted on, against what wrong alignments of the same rasters give, and bounds the remaining error. A result that does not verify is not written unless &apos;Keep unverified results&apos; is set; the log lists every method tried, its verdict and its time. The other algorithms of this group run one method each, for experts.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="469"/>
+        <location filename="../processing/register_algorithm.py" line="496"/>
         <source>Register across modalities at any rotation and scale</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="470"/>
+        <location filename="../processing/register_algorithm.py" line="497"/>
         <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.
 
 References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Processing 29:3296-3310; J. Li, Q. Hu and Y. Zhang (2023), Multimodal image matching: a scale-invariant algorithm and an open dataset, ISPRS Journal of Photogrammetry and Remote Sensing 204:77-88; Y. Ye et al. (2019), CFOG, IEEE TGRS 57(11):9059-9070.</source>
@@ -1072,57 +1082,57 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="147"/>
+        <location filename="../processing/register_algorithm.py" line="226"/>
         <source>Local correction grid spacing (reference pixels; 0: automatic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="161"/>
+        <location filename="../processing/register_algorithm.py" line="171"/>
         <source>Output CRS (empty: the reference&apos;s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="163"/>
+        <location filename="../processing/register_algorithm.py" line="229"/>
         <source>Output pixel size in output CRS units (empty: from the pixel grid)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="166"/>
+        <location filename="../processing/register_algorithm.py" line="176"/>
         <source>Output format</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="167"/>
+        <location filename="../processing/register_algorithm.py" line="230"/>
         <source>GDAL creation options (KEY=VALUE, separated by spaces)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="170"/>
+        <location filename="../processing/register_algorithm.py" line="180"/>
         <source>Pixels outside the target</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="171"/>
+        <location filename="../processing/register_algorithm.py" line="231"/>
         <source>Nodata value (with &apos;Nodata value&apos; above; empty: the target&apos;s, else 0)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="201"/>
+        <location filename="../processing/register_algorithm.py" line="213"/>
         <source>HTML files (*.html)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="305"/>
+        <location filename="../processing/register_algorithm.py" line="332"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="324"/>
+        <location filename="../processing/register_algorithm.py" line="351"/>
         <source>Invalid parameter: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="326"/>
+        <location filename="../processing/register_algorithm.py" line="353"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1148,37 +1158,32 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
     </message>
     <message>
         <location filename="core_strings.py" line="32"/>
-        <source>From the file name (.vrt: VRT, otherwise GeoTIFF)</source>
+        <source>From the file name (.vrt or GeoTIFF)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="core_strings.py" line="34"/>
-        <source>Cloud-optimised GeoTIFF (with overviews)</source>
+        <source>Cloud-optimised GeoTIFF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="core_strings.py" line="36"/>
-        <source>Automatic (the target&apos;s nodata, NaN for floats, else an alpha band)</source>
+        <source>Automatic (nodata, NaN or an alpha band)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="144"/>
+        <location filename="../processing/register_algorithm.py" line="225"/>
         <source>Local correction window (reference pixels; 0: automatic)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="core_strings.py" line="10"/>
-        <source>Linear (scale and shift per axis, no rotation)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="core_strings.py" line="16"/>
-        <source>Average (of the pixels an output pixel covers)</source>
+        <source>Linear (scale and shift per axis)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="core_strings.py" line="17"/>
-        <source>Mode (most frequent value: classes)</source>
+        <source>Mode (most frequent: classes)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -1207,33 +1212,73 @@ References: J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Proc
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="139"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="141"/>
+        <location filename="../processing/register_algorithm.py" line="151"/>
         <source>Local (non-rigid) correction</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>Pixel-to-pixel (reference not georeferenced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="201"/>
+        <location filename="../processing/register_algorithm.py" line="213"/>
         <source>Quality report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="346"/>
+        <location filename="../processing/register_algorithm.py" line="373"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="363"/>
+        <location filename="../processing/register_algorithm.py" line="390"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="154"/>
+        <source>Local window (reference px; 0: automatic)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="157"/>
+        <source>Local grid spacing (reference px; 0: automatic)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="160"/>
+        <source>Accuracy asked for (reference px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="163"/>
+        <source>Target band to match</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="173"/>
+        <source>Output pixel size (output CRS units)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="177"/>
+        <source>GDAL creation options</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="188"/>
+        <source>RANSAC tolerance (working px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="16"/>
+        <source>Average</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -82,9 +82,10 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
             self.TARGETS, self.tr("Target rasters"), QgsProcessing.TypeRaster, optional=True))
         self.addParameter(QgsProcessingParameterRasterLayer(
             self.REFERENCE, self.tr("Reference raster (for the targets above)"), optional=True))
-        self.addParameter(QgsProcessingParameterFile(
-            self.JOBS, self.tr("Job list instead (CSV or GeoPackage: target, reference, method, model, output)"),
-            optional=True, fileFilter=self.tr("Job lists (*.csv *.gpkg)")))
+        jobs = QgsProcessingParameterFile(self.JOBS, self.tr("Job list instead (CSV or GeoPackage)"), optional=True,
+                                          fileFilter=self.tr("Job lists (*.csv *.gpkg)"))
+        jobs.setHelp(self.tr("Job list instead (CSV or GeoPackage: target, reference, method, model, output)"))
+        self.addParameter(jobs)
         self.addParameter(QgsProcessingParameterEnum(self.METHOD, self.tr("Method"), options=batch_methods(),
                                                      defaultValue=0))
         self.addParameter(enum_parameter(self.MODEL, self.tr("Transformation"), "affine"))
@@ -94,8 +95,10 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         self.addParameter(advanced(QgsProcessingParameterNumber(
             self.TOLERANCE, self.tr("Accuracy asked for (reference pixels)"), QgsProcessingParameterNumber.Double,
             RegisterOptions().tolerance_px, minValue=0.01)))
-        self.addParameter(advanced(QgsProcessingParameterString(
-            self.SCHEDULER, self.tr("Dask scheduler (tls://host:port; empty: a local cluster)"), "", optional=True)))
+        scheduler = QgsProcessingParameterString(self.SCHEDULER, self.tr("Dask scheduler (tls://host:port)"), "",
+                                                 optional=True)
+        scheduler.setHelp(self.tr("Dask scheduler (tls://host:port; empty: a local cluster)"))
+        self.addParameter(advanced(scheduler))
         self.addParameter(advanced(QgsProcessingParameterNumber(
             self.WORKERS, self.tr("Workers of the local cluster (0: one per CPU)"),
             QgsProcessingParameterNumber.Integer, 0, minValue=0)))

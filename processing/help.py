@@ -18,7 +18,7 @@ def help_page(alg) -> str:
             default = f"{default}: {p.options()[default]}"
         where = "advanced" if p.flags() & QgsProcessingParameterDefinition.FlagAdvanced else ""
         rows.append("<tr>" + "".join(f"<td>{html.escape(str(v))}</td>" for v in (
-            p.description(), p.name(), "" if default is None else default, where)) + "</tr>")
+            p.help() or p.description(), p.name(), "" if default is None else default, where)) + "</tr>")
     outputs = "".join(f"<li>{html.escape(o.description())} (<code>{html.escape(o.name())}</code>)</li>"
                       for o in alg.outputDefinitions())
     title = html.escape(alg.displayName())

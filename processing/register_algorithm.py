@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import dataclasses
+import re
 
 from qgis.core import (
     QgsProcessing,
@@ -53,6 +54,15 @@ def decimals(value) -> int:
     """Decimals a spin box shows for a default ``value``: its own, at least 2 (QGIS shows 6: '3.000000')."""
     text = f"{float(value):.6f}".rstrip("0")
     return min(6, max(2, len(text.split(".")[1])))
+
+
+LABEL_CHARS = 44  # longer labels make the parameters panel of an 800 px dialog scroll sideways
+
+
+def short_label(text: str, name: str) -> str:
+    """A method parameter's label: the first phrase of its help when that is short, else its name."""
+    head = re.split(r" \(|: |; |\. | = |, ", text, maxsplit=1)[0].rstrip(".")
+    return head if len(head) <= LABEL_CHARS else name.replace("_", " ").capitalize()
 
 
 def feedback_progress(feedback):
@@ -142,16 +152,16 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         self.addParameter(advanced(QgsProcessingParameterBoolean(
             self.PIXEL_MODE, self.tr("Pixel-to-pixel (reference not georeferenced)"), False)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
-            self.LOCAL_WINDOW, self.tr("Local correction window (reference pixels; 0: automatic)"),
+            self.LOCAL_WINDOW, self.tr("Local window (reference px; 0: automatic)"),
             QgsProcessingParameterNumber.Integer, d.local_window_px, minValue=0)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
-            self.LOCAL_SPACING, self.tr("Local correction grid spacing (reference pixels; 0: automatic)"),
+            self.LOCAL_SPACING, self.tr("Local grid spacing (reference px; 0: automatic)"),
             QgsProcessingParameterNumber.Double, d.local_spacing_px, minValue=0.0)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
-            self.TOLERANCE, self.tr("Accuracy asked for (reference pixels): verified only within it"),
+            self.TOLERANCE, self.tr("Accuracy asked for (reference px)"),
             QgsProcessingParameterNumber.Double, d.tolerance_px, minValue=0.01)))
         self.addParameter(advanced(QgsProcessingParameterBand(
-            self.TARGET_BAND, self.tr("Target band to match (empty: luminance of RGB, else band 1)"),
+            self.TARGET_BAND, self.tr("Target band to match"),
             parentLayerParameterName=self.TARGET, optional=True)))
         self.addParameter(advanced(QgsProcessingParameterBand(
             self.REFERENCE_BAND, self.tr("Reference band to match"), parentLayerParameterName=self.REFERENCE,
@@ -161,28 +171,30 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         self.addParameter(advanced(QgsProcessingParameterCrs(
             self.OUTPUT_CRS, self.tr("Output CRS (empty: the reference's)"), optional=True)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
-            self.RESOLUTION, self.tr("Output pixel size in output CRS units (empty: from the pixel grid)"),
+            self.RESOLUTION, self.tr("Output pixel size (output CRS units)"),
             QgsProcessingParameterNumber.Double, None, optional=True, minValue=0.0)))
         self.addParameter(advanced(enum_parameter(self.FORMAT, self.tr("Output format"))))
         self.addParameter(advanced(QgsProcessingParameterString(
-            self.CREATION_OPTIONS, self.tr("GDAL creation options (KEY=VALUE, separated by spaces)"), "",
+            self.CREATION_OPTIONS, self.tr("GDAL creation options"), "",
             optional=True)))
         self.addParameter(advanced(enum_parameter(self.FILL, self.tr("Pixels outside the target"))))
         self.addParameter(advanced(QgsProcessingParameterNumber(
-            self.NODATA, self.tr("Nodata value (with 'Nodata value' above; empty: the target's, else 0)"),
+            self.NODATA, self.tr("Nodata value"),
             QgsProcessingParameterNumber.Double, None, optional=True)))
         self.addParameter(advanced(enum_parameter(self.REFINE, self.tr("Full-resolution refinement"))))
         self.addParameter(advanced(QgsProcessingParameterNumber(
             self.MAX_WORKING_PIXELS, self.tr("Working image size (pixels)"), QgsProcessingParameterNumber.Integer,
             d.max_working_pixels, minValue=4096)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
-            self.RANSAC_THRESHOLD, self.tr("RANSAC tolerance (working pixels; empty: the method's)"),
+            self.RANSAC_THRESHOLD, self.tr("RANSAC tolerance (working px)"),
             QgsProcessingParameterNumber.Double, d.ransac_threshold_px, optional=method is None, minValue=0.1)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
             self.MAX_GCPS, self.tr("Maximum number of GCPs"), QgsProcessingParameterNumber.Integer, d.max_gcps,
             minValue=4)))
         self.addParameter(advanced(QgsProcessingParameterNumber(
             self.SEED, self.tr("Random seed"), QgsProcessingParameterNumber.Integer, d.seed, minValue=0)))
+        for name, text in self._tooltips().items():
+            self.parameterDefinition(name).setHelp(text)
         for f in self._fields():
             p = self._method_parameter(f)
             self.addParameter(p if f.metadata.get("basic") else advanced(p))
@@ -207,28 +219,43 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         self.addOutput(QgsProcessingOutputNumber("RMS_LOO_PX", self.tr("Leave-one-out RMS (reference pixels)")))
         self.addOutput(QgsProcessingOutputNumber("N_GCPS", self.tr("Number of GCPs")))
 
+    def _tooltips(self):
+        """The whole wording of parameters whose label is kept short enough for the panel."""
+        return {
+            self.LOCAL_WINDOW: self.tr('Local correction window (reference pixels; 0: automatic)'),
+            self.LOCAL_SPACING: self.tr('Local correction grid spacing (reference pixels; 0: automatic)'),
+            self.TOLERANCE: self.tr('Accuracy asked for (reference pixels): verified only within it'),
+            self.TARGET_BAND: self.tr('Target band to match (empty: luminance of RGB, else band 1)'),
+            self.RESOLUTION: self.tr('Output pixel size in output CRS units (empty: from the pixel grid)'),
+            self.CREATION_OPTIONS: self.tr('GDAL creation options (KEY=VALUE, separated by spaces)'),
+            self.NODATA: self.tr("Nodata value (with 'Nodata value' above; empty: the target's, else 0)"),
+            self.RANSAC_THRESHOLD: self.tr("RANSAC tolerance (working pixels; empty: the method's)"),
+        }
+
     def _fields(self):
         method = self.method()
         return () if method is None else dataclasses.fields(method.params_type)
 
     def _method_parameter(self, f):
-        name, label = method_parameter_name(f.name), f.metadata.get("help", f.name)
+        name, text = method_parameter_name(f.name), self.tr(f.metadata.get("help", f.name))
+        label = short_label(text, f.name)
         choices = f.metadata.get("choices")
+        number = QgsProcessingParameterNumber
         if choices:
-            return QgsProcessingParameterEnum(name, self.tr(label), options=[str(c) for c in choices],
-                                              defaultValue=list(choices).index(f.default))
-        if isinstance(f.default, bool):
-            return QgsProcessingParameterBoolean(name, self.tr(label), f.default)
-        if isinstance(f.default, (int, float)):
-            number = QgsProcessingParameterNumber
-            p = number(name, self.tr(label), number.Integer if isinstance(f.default, int) else number.Double,
-                       f.default)
+            p = QgsProcessingParameterEnum(name, label, options=[str(c) for c in choices],
+                                           defaultValue=list(choices).index(f.default))
+        elif isinstance(f.default, bool):
+            p = QgsProcessingParameterBoolean(name, label, f.default)
+        elif isinstance(f.default, (int, float)):
+            p = number(name, label, number.Integer if isinstance(f.default, int) else number.Double, f.default)
             if f.metadata.get("minimum") is not None:
                 p.setMinimum(f.metadata["minimum"])
             if f.metadata.get("maximum") is not None:
                 p.setMaximum(f.metadata["maximum"])
-            return p
-        return QgsProcessingParameterString(name, self.tr(label), str(f.default))
+        else:
+            p = QgsProcessingParameterString(name, label, str(f.default))
+        p.setHelp(text)
+        return p
 
     def _raster_path(self, parameters, name, context):
         layer = self.parameterAsRasterLayer(parameters, name, context)

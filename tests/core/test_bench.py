@@ -10,6 +10,7 @@ from hamta.bench.tables import summarise
 from hamta.cli.main import main
 
 
+@pytest.mark.bench
 def test_quick_bench_runs_every_family_and_the_baselines_succeed_on_easy_cases(tmp_path, shared, capsys):
     out = tmp_path / "bench"
     assert main(["bench", "--quick", "--jobs", "2", "--out", str(out), "--data", str(shared / "data"),
