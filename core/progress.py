@@ -19,14 +19,17 @@ class Monitor:
         Receives the overall fraction in [0, 1] and a short stage name.
     is_canceled : callable() -> bool, optional
         Polled at every report; when it returns True, :class:`RegistrationCanceled` is raised.
+    deadline : float, optional
+        A ``time.perf_counter()`` value; once passed, every report raises :class:`DeadlineReached`.
     """
 
     def __init__(self, progress: Optional[ProgressFn] = None, is_canceled: Optional[CancelFn] = None,
-                 start: float = 0.0, stop: float = 1.0):
+                 start: float = 0.0, stop: float = 1.0, deadline: Optional[float] = None):
         self._progress = progress
         self._is_canceled = is_canceled
         self._start = start
         self._stop = stop
+        self._deadline = deadline
 
     def report(self, fraction: float, message: str = "") -> None:
         """Report ``fraction`` (0..1) of this monitor's span; raise if cancellation was asked."""
@@ -39,29 +42,23 @@ class Monitor:
         """Whether the caller asked to stop (without raising)."""
         return self._is_canceled is not None and bool(self._is_canceled())
 
-    _deadline = None
-
     def check(self) -> None:
         """Raise :class:`RegistrationCanceled` when the caller asked to stop, :class:`DeadlineReached`
-        when the deadline (see :meth:`until`) has passed."""
+        when the deadline has passed."""
         if self.canceled():
             raise RegistrationCanceled("Registration canceled; no outputs were written.")
         if self._deadline is not None and time.perf_counter() > self._deadline:
             raise DeadlineReached("the time budget is spent")
 
     def until(self, deadline: float) -> "Monitor":
-        """This monitor, also stopping (:class:`DeadlineReached`) once ``time.perf_counter()``
-        passes ``deadline``."""
-        monitor = Monitor(self._progress, self._is_canceled, self._start, self._stop)
-        monitor._deadline = deadline
-        return monitor
+        """This monitor with a ``deadline``."""
+        return Monitor(self._progress, self._is_canceled, self._start, self._stop, deadline)
 
     def span(self, start: float, stop: float) -> "Monitor":
-        """A child monitor covering [start, stop] of this monitor's span."""
+        """A child monitor covering [start, stop] of this monitor's span (with its deadline)."""
         width = self._stop - self._start
-        child = Monitor(self._progress, self._is_canceled, self._start + start * width, self._start + stop * width)
-        child._deadline = self._deadline
-        return child
+        return Monitor(self._progress, self._is_canceled, self._start + start * width, self._start + stop * width,
+                       self._deadline)
 
 
 NULL_MONITOR = Monitor()

@@ -151,7 +151,7 @@ def make_gcps(fit: FinalFit, to_map) -> List[Gcp]:
     score first (disabled). ``to_map`` maps reference px to map coordinates."""
     p, res = fit.points, _residuals(fit)
     outliers = np.flatnonzero(~p.inlier)
-    outliers = _new_places(outliers[np.argsort(-p.score[outliers], kind="stable")], fit.used, p)[: len(fit.used)]
+    outliers = _new_places(outliers[np.argsort(-p.score[outliers], kind="stable")], fit.used, p, len(fit.used))
     gcps = []
     for i, enabled in [(i, True) for i in fit.used] + [(i, False) for i in outliers]:
         gcps.append(Gcp(tuple(map(float, p.target_px[i])), tuple(map(float, p.reference_px[i])),
@@ -160,19 +160,21 @@ def make_gcps(fit: FinalFit, to_map) -> List[Gcp]:
     return gcps
 
 
-def _new_places(candidates: np.ndarray, taken: np.ndarray, p: Correspondences) -> np.ndarray:
-    """``candidates`` (in order) at a target and a reference pixel that no point of ``taken`` nor an
-    earlier candidate holds, so no place is listed twice."""
-    def key(xy, i):
-        return tuple(np.round(xy[i], 6))
+def _new_places(candidates: np.ndarray, taken: np.ndarray, p: Correspondences, limit: int) -> np.ndarray:
+    """The first ``limit`` of ``candidates`` (in order) at a target and a reference pixel that no
+    point of ``taken`` nor an earlier candidate holds, so no place is listed twice."""
+    def places(i):
+        return {(k,) + tuple(np.round(xy[i], 6)) for k, xy in enumerate((p.target_px, p.reference_px))}
 
-    seen = {key(xy, i) + (k,) for i in taken for k, xy in enumerate((p.target_px, p.reference_px))}
+    seen = set().union(*map(places, taken)) if len(taken) else set()
     kept = []
     for i in candidates:
-        places = {key(xy, i) + (k,) for k, xy in enumerate((p.target_px, p.reference_px))}
-        if not places & seen:
+        if len(kept) == limit:
+            break
+        here = places(i)
+        if not here & seen:
             kept.append(i)
-            seen |= places
+            seen |= here
     return np.asarray(kept, int)
 
 
