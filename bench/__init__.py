@@ -2,5 +2,5 @@
 
 Synthetic families with exact ground truth and the real development pairs (:mod:`.families`,
 :mod:`.cases`), the judgement of a returned mapping (:mod:`.metrics`), the runner (:mod:`.runner`),
-its tables (:mod:`.tables`) and each paper's own evaluation (:mod:`.reproductions`).
+its tables (:mod:`.tables`) and each paper's own evaluation and the engineering goals (:mod:`.study`, :mod:`.studies`).
 """

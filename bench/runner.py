@@ -205,11 +205,11 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
 def run_reproductions(config: BenchConfig, bench_rows: List[dict], progress=None) -> list:
     """Each paper's own evaluation whose method is benchmarked and whose families are selected.
     A reproduction without units of its own is computed from the benchmark's rows."""
-    from .reproductions import all_reproductions
+    from .studies import all_studies
 
     tables = []
     names = {parse_variant(m)[0] for m in config.methods}
-    for rep in all_reproductions():
+    for rep in all_studies():
         if not set(rep.methods) & names or not set(rep.families) & set(config.families):
             continue
         if rep.units is None:
@@ -229,10 +229,10 @@ def run_reproductions(config: BenchConfig, bench_rows: List[dict], progress=None
 
 
 def _run_unit(args):
-    from .reproductions import all_reproductions
+    from .studies import all_studies
 
     name, unit, config = args
-    return next(r for r in all_reproductions() if r.name == name).run_unit(unit, config)
+    return next(r for r in all_studies() if r.name == name).run_unit(unit, config)
 
 
 def _pool(jobs: int):

@@ -157,9 +157,9 @@ def cmd_methods(args) -> int:
 
 
 def cmd_demo(args) -> int:
+    from ..bench.sample import TARGET_SHAPE, check_point_error, make_demo_pair
     from ..core import RegisterOptions, run
     from ..core.outputs import OutputPaths
-    from .demo import TARGET_SHAPE, check_point_error, make_demo_pair
 
     root = os.path.abspath(args.out)
     sample = make_demo_pair(os.path.join(root, "sample"))

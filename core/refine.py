@@ -17,8 +17,8 @@ import cv2
 import numpy as np
 from rasterio.windows import Window
 
-from .area.cfog import cfog, ncc_surface, peak_offset
 from .coords import as_xy
+from .descriptors.cfog import cfog, ncc_surface, peak_offset
 from .errors import InsufficientMatchesError
 from .estimation.models import LinearModel
 from .estimation.robust import Estimate, RobustRules, robust_linear
@@ -50,7 +50,7 @@ class RefineParams:
         (templates then line up better where the first model was off by a few pixels).
     similarity : {'ncc', 'cfog'}
         Correlation of intensities, or of CFOG structural descriptors (for images of different
-        modality, see :mod:`hamta.core.area.cfog`).
+        modality, see :mod:`hamta.core.descriptors.cfog`).
     """
 
     template_px: int = 31

@@ -39,8 +39,8 @@ from rasterio.windows import Window
 from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
-from .area.cfog import cfog, peak_offset
 from .coords import raster_outline
+from .descriptors.cfog import cfog, peak_offset
 from .estimation.models import local_jacobian
 from .io.raster import RasterInfo, open_dataset, read_image
 from .progress import Monitor

@@ -66,6 +66,6 @@ def raster_writer(tmp_path):
 @pytest.fixture(scope="session")
 def demo_pair(tmp_path_factory):
     """The bundled demo pair (self-generated), written once per session."""
-    from hamta.cli.demo import make_demo_pair
+    from hamta.bench.sample import make_demo_pair
 
     return make_demo_pair(str(tmp_path_factory.mktemp("demo") / "sample"))

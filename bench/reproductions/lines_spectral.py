@@ -8,7 +8,7 @@ eye), and whether a transform followed. The product is listed for comparison.
 """
 from __future__ import annotations
 
-from .base import Reproduction
+from ..study import Study
 
 METHODS = ("lines-eigen", "lines-vspm", "lines-spectral-faithful", "lines-spectral-faithful[fusion=cascade]",
            "cfog")
@@ -49,5 +49,5 @@ def tables(rows) -> list:
                      "lists as future work (faithful methods) or the product pipeline."}]
 
 
-REPRODUCTION = Reproduction("lines-spectral", ("lines-eigen", "lines-vspm", "lines-spectral-faithful"),
+STUDY = Study("lines-spectral", ("lines-eigen", "lines-vspm", "lines-spectral-faithful"),
                             ("multimodal", "pairs"), None, None, tables)

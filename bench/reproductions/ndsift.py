@@ -10,7 +10,7 @@ the paper could not report (it has no ground truth).
 from __future__ import annotations
 
 from ..stats import median
-from .base import Reproduction
+from ..study import Study
 
 METHODS = ("bfsift", "gss-sift", "ndss-sift", "ndsift-pc-faithful", "ndsift-pc", "sift")
 PAPER = ("Paper (Table II, 3 real SAR pairs of 300-374 px): BFSIFT RMSE 8.35 / 24.47 / 0.95 px, NDSS+SIFT "
@@ -50,4 +50,4 @@ def tables(rows) -> list:
                      "(faithful methods fit every match; the product and BFSIFT fit RANSAC inliers). " + PAPER}]
 
 
-REPRODUCTION = Reproduction("ndsift", METHODS[:5], ("speckle",), None, None, tables)
+STUDY = Study("ndsift", METHODS[:5], ("speckle",), None, None, tables)

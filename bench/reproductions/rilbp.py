@@ -21,14 +21,14 @@ from scipy.spatial import cKDTree
 
 from ...core.descriptors.cslbp import CslbpParams, cslbp_descriptors
 from ...core.descriptors.rilbp import RilbpParams, rilbp_descriptors
-from ...core.features.censure import CensureDetector, censure_keypoints
-from ...core.features.patches import dominant_orientation, sample_patches
-from ...core.features.sift import sift_descriptors
+from ...core.descriptors.sift import sift_descriptors
+from ...core.detectors.censure import CensureDetector, censure_keypoints
+from ...core.detectors.patches import dominant_orientation, sample_patches
 from ...core.io.raster import open_raster, read_image, resolve_bands
 from ...core.matching.nearest import match_features
 from ...core.preprocess.normalize import stretch_to_uint8
 from ...core.types import Features
-from .base import Reproduction
+from ..study import Study
 
 TOLERANCE_PX = 3.0
 DESCRIPTORS = ("RILBP", "CS-LBP", "SIFT", "RILBP product")
@@ -186,5 +186,5 @@ def _invariance_table(rows):
                     "'CS-LBP upright' omits it, showing why the baseline needs one."}
 
 
-REPRODUCTION = Reproduction("rilbp", ("rilbp", "rilbp-faithful"), ("rotation", "scale", "pairs"), units, run_unit,
+STUDY = Study("rilbp", ("rilbp", "rilbp-faithful"), ("rotation", "scale", "pairs"), units, run_unit,
                             tables)

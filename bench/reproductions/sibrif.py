@@ -20,7 +20,7 @@ import numpy as np
 
 from ..cases import Canvas, warped_case
 from ..families import load_source, target_matrix
-from .base import Reproduction
+from ..study import Study
 
 TABLE1_METHODS = ("sift", "pca-sift", "orb", "sibrif", "sibrif-faithful")
 SWEEP_METHODS = ("sift", "sibrif", "sibrif-faithful")
@@ -146,4 +146,4 @@ def tables(rows) -> list:
     return out
 
 
-REPRODUCTION = Reproduction("sibrif", ("sibrif", "sibrif-faithful"), ("rotation", "scale"), units, run_unit, tables)
+STUDY = Study("sibrif", ("sibrif", "sibrif-faithful"), ("rotation", "scale"), units, run_unit, tables)

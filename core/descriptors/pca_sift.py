@@ -19,7 +19,7 @@ from functools import lru_cache
 import cv2
 import numpy as np
 
-from ..features.patches import patch_gradients, sample_patches
+from ..detectors.patches import patch_gradients, sample_patches
 from .normalise import l2_normalise
 
 PATCH_RADIUS = 20
@@ -55,8 +55,8 @@ def train_basis(paths, n_components: int = N_COMPONENTS, max_patches: int = 2000
     30 and 60 degrees and scaled by 0.7. Deterministic for a seed."""
     import rasterio
 
-    from ..features.sift import OPENCV_SIFT_BIAS_PX, SiftDetector, keypoints_from_opencv
     from ..preprocess.normalize import stretch_to_uint8
+    from .sift import OPENCV_SIFT_BIAS_PX, SiftDetector, keypoints_from_opencv
 
     vectors = []
     sift = SiftDetector(n_features=3000).create()

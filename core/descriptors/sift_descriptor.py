@@ -26,7 +26,7 @@ from typing import Tuple
 
 import numpy as np
 
-from ..features.patches import patch_gradients, sample_patches
+from ..detectors.patches import patch_gradients, sample_patches
 from .normalise import l2_normalise
 
 ORI_BINS = 36

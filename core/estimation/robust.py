@@ -69,7 +69,7 @@ def robust_linear(points: Correspondences, threshold_px: float, rules: RobustRul
     if robust == "none":
         model, inliers = LinearModel.fit(rules.kind, tgt, ref), np.ones(n, bool)
     elif robust == "triplets":
-        from ..matching.spectral import triplet_clustering  # scipy.spatial: loaded only when asked for
+        from .triplets import triplet_clustering  # scipy.spatial: loaded only when asked for
 
         _, inliers = triplet_clustering(tgt, ref, radius_px=4 * threshold_px, inlier_px=threshold_px, seed=rules.seed)
         model = LinearModel.fit(rules.kind, tgt[inliers], ref[inliers]) if inliers.sum() >= rules.need else None

@@ -6,23 +6,17 @@
   53(11):6058-6072, as the thesis describes it (Hausdorff distances between Voronoi cells, a
   proximity matrix, its eigenvectors, a crossing-angle mask).
 - Their fusion, which the thesis leaves unspecified: a score-level sum or a cascade (spec 2.10).
-- Triplet clustering, the thesis's future work: an affine transform from every triple of matches,
-  the densest cluster of those transforms, and the matches it explains.
 
 Points are working pixels of each image; every matcher returns index pairs (i into the first set,
 j into the second) and a score per pair (higher is better).
 """
 from __future__ import annotations
 
-import itertools
-import math
 from typing import Tuple
 
 import numpy as np
-from scipy.spatial import Voronoi, cKDTree
+from scipy.spatial import Voronoi
 from scipy.spatial.distance import cdist
-
-from ..estimation.ransac import minimal_fits
 
 FUSIONS = ("score", "cascade")
 VSPM_PROXIMITIES = ("printed", "laplacian", "gaussian")
@@ -195,46 +189,3 @@ def fused_match(xy1, xy2, cells1, cells2, angle1, angle2, *, rule: str = "score"
     s = np.where(mask, weight * sa + (1.0 - weight) * sb, -np.inf)
     i, j = mutual_best(s, largest=True)
     return i, j, s[i, j]
-
-
-def triplet_clustering(src, dst, *, radius_px: float, inlier_px: float, min_area_px2: float = 100.0,
-                       scale_range: Tuple[float, float] = (0.01, 100.0), max_triplets: int = 5000, seed: int = 0):
-    """The thesis's future work: an affine from every triple of matches (src -> dst), the transform
-    with the most others within ``radius_px`` (compared by where they send three anchor points spread
-    over the source points), the mean of its cluster, and the matches it maps within ``inlier_px``.
-
-    Triples whose triangles are smaller than ``min_area_px2`` in either image, or whose scale is
-    outside ``scale_range``, are skipped. Returns (2 x 3 matrix or None, inlier mask).
-    """
-    src, dst = np.asarray(src, float), np.asarray(dst, float)
-    n = len(src)
-    none = (None, np.zeros(n, bool))
-    if n < 3:
-        return none
-    if math.comb(n, 3) <= max_triplets:
-        tri = np.array(list(itertools.combinations(range(n), 3)), int)
-    else:
-        rng = np.random.default_rng(seed)
-        tri = np.array([rng.choice(n, 3, replace=False) for _ in range(max_triplets)], int)
-
-    def area(p):
-        return 0.5 * np.abs((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
-                            - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1]))
-    s3, d3 = src[tri], dst[tri]
-    keep = (area(s3) >= min_area_px2) & (area(d3) >= min_area_px2)
-    m, ok = minimal_fits("affine", s3[keep], d3[keep])
-    m = m[:, :2]
-    det = np.abs(m[:, 0, 0] * m[:, 1, 1] - m[:, 0, 1] * m[:, 1, 0])
-    ok &= (det >= scale_range[0] ** 2) & (det <= scale_range[1] ** 2)
-    m = m[ok]
-    if len(m) == 0:
-        return none
-    lo, hi = src.min(axis=0), src.max(axis=0)
-    anchors = np.array([[lo[0], lo[1], 1.0], [hi[0], lo[1], 1.0], [lo[0], hi[1], 1.0]])
-    code = np.einsum("tij,aj->tai", m, anchors).reshape(len(m), 6)
-    near = cKDTree(code).query_ball_point(code, radius_px, p=np.inf, return_length=True)
-    best = int(np.argmax(near))
-    member = np.abs(code - code[best]).max(axis=1) <= radius_px
-    mean = m[member].mean(axis=0)
-    err = np.linalg.norm(src @ mean[:, :2].T + mean[:, 2] - dst, axis=1)
-    return mean, err <= inlier_px

@@ -24,10 +24,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..area import multimodal
-from ..area.cfog import cfog
+from ..descriptors.cfog import cfog
+from ..estimation import triplets
 from ..estimation.ransac import ransac_or_none
-from ..matching import spectral
+from ..matching import multimodal
 from ..preprocess.sar import SAR_UNITS
 from ..progress import Monitor
 from ..refine import STRUCTURAL_REFINEMENT
@@ -78,7 +78,7 @@ class CfogParams:
 def _coarse_from_lines(target, reference, params: CfogParams, monitor, seed: int):
     m = match_lines(target, reference, params.thesis(), monitor)
     diag = math.hypot(*reference.shape)
-    affine, inliers = spectral.triplet_clustering(m.target_xy, m.reference_xy, radius_px=0.03 * diag,
+    affine, inliers = triplets.triplet_clustering(m.target_xy, m.reference_xy, radius_px=0.03 * diag,
                                                   inlier_px=0.02 * diag, seed=seed)
     if affine is None or inliers.sum() < 3:
         return None

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from ..features import lines as ln
+from ..detectors import lines as ln
 from ..matching import spectral
 from ..preprocess.sar import SAR_UNITS, lee_filter, normalised_amplitude
 from ..progress import Monitor

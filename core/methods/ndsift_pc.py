@@ -25,10 +25,10 @@ import cv2
 import numpy as np
 
 from ..descriptors.sift_descriptor import descriptors, orientations
-from ..features.dog import DogParams, build_octaves, dog_keypoints, gaussian_octaves
-from ..features.nonlinear import aos_step, contrast_factor, pm_conductance
-from ..features.phase_congruency import PhaseCongruencyParams, phase_congruency
-from ..features.roewa import roewa_magnitude
+from ..detectors.dog import DogParams, build_octaves, dog_keypoints, gaussian_octaves
+from ..detectors.nonlinear import aos_step, contrast_factor, pm_conductance
+from ..detectors.phase_congruency import PhaseCongruencyParams, phase_congruency
+from ..detectors.roewa import roewa_magnitude
 from ..matching.nearest import CROSS_CHECKS, match_features
 from ..preprocess.sar import SAR_UNITS, log_scaled, normalised_amplitude
 from ..progress import Monitor

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..features.orb import OrbDetector, orb_features
+from ..descriptors.orb import OrbDetector, orb_features
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
 from .registry import Method, match_with, param, register_method, validate

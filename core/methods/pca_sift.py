@@ -10,7 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..descriptors.pca_sift import pca_sift_descriptors
-from ..features.sift import SiftDetector, sift_keypoints
+from ..descriptors.sift import SiftDetector, sift_keypoints
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
 from ..types import Features, Keypoints

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..area.phase_correlation import phase_correlate
+from ..matching.phase_correlation import phase_correlate
 from ..progress import Monitor
 from ..types import Matches
 from .registry import Method, param, register_method, validate

@@ -7,7 +7,7 @@ technique. arXiv:2303.00319.
 
 Phase-congruency maps (4 scales, 6 orientations, RIFT's parameters), FAST corners on the maximum
 moment, RIFT2 orientations and rotation-invariant MIM descriptors
-(:mod:`hamta.core.features.rift`), nearest-neighbour matching without a ratio test (RIFT's demo:
+(:mod:`hamta.core.descriptors.rift`), nearest-neighbour matching without a ratio test (RIFT's demo:
 ``matchFeatures`` with ``MaxRatio`` 1), one match per reference point, then the shared robust fit
 (2 px, as RIFT's FSC). Not scale-invariant, as published. Deviations, neutral or in its favour:
 keypoints in invalid pixels (a rotated image's fill) are ignored, and the robust fit is seeded.
@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..features import rift
+from ..descriptors import rift
 from ..progress import Monitor
 from ..types import Matches
 from .registry import Method, param, register_method, validate

@@ -21,8 +21,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..descriptors.rilbp import RilbpParams, rilbp_descriptors
-from ..features.censure import CensureDetector, censure_keypoints
-from ..features.patches import sample_patches
+from ..detectors.censure import CensureDetector, censure_keypoints
+from ..detectors.patches import sample_patches
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import stretch_to_uint8
 from ..types import Features

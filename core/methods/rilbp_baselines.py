@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..descriptors.cslbp import CslbpParams, cslbp_descriptors
-from ..features.patches import dominant_orientation, sample_patches
-from ..features.sift import sift_descriptors
+from ..descriptors.sift import sift_descriptors
+from ..detectors.patches import dominant_orientation, sample_patches
 from ..types import Features, Keypoints
 from .registry import Method, match_with, param, register_method
 from .rilbp import CITATION, CensureRegionParams, censure_regions

@@ -23,8 +23,8 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from ..features.rbrief import intensity_centroid_angle, rbrief_descriptors
-from ..features.sift import SiftDetector, sift_keypoints
+from ..descriptors.rbrief import intensity_centroid_angle, rbrief_descriptors
+from ..descriptors.sift import SiftDetector, sift_keypoints
 from ..matching.nearest import match_features, self_similar
 from ..preprocess.edges import sobel_edge_image
 from ..preprocess.normalize import detection_mask, stretch_to_uint8

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..features.sift import SiftDetector, sift_features
+from ..descriptors.sift import SiftDetector, sift_features
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
 from .registry import Method, match_with, param, register_method, validate

@@ -6,13 +6,13 @@ exhaustive structural search is slow and fragile.
 
 1. Features: both images rescaled by one factor (the reference's longest side at most
    ``feat_px``); on a pyramid of each (factors 1, 2^-1/2, 1/2) RIFT2 keypoints with rotation-
-   invariant MIM descriptors (:mod:`hamta.core.features.rift`); every target descriptor takes its
+   invariant MIM descriptors (:mod:`hamta.core.descriptors.rift`); every target descriptor takes its
    nearest reference descriptor.
 2. Hypotheses: each match votes for a rotation (difference of the keypoints' orientations) and a
    scale (ratio of their pyramid factors); the strongest (rotation, scale) cells each give a
    similarity by RANSAC on the matches that voted near them.
 3. Dense check: each hypothesis is scored by the masked NCC of CFOG descriptors of the target seen
-   through it against the reference's (:mod:`hamta.core.area.pose_check`), over shifts and a few
+   through it against the reference's (:mod:`hamta.core.matching.pose_check`), over shifts and a few
    scale factors around it, and ranked by the significance of the best.
 4. Local RIFT: the best few are refined twice by matching plain (not rotation-invariant) MIM
    descriptors near their predicted positions; the hypothesis with most inliers wins, and its
@@ -35,10 +35,10 @@ from typing import List
 
 import numpy as np
 
-from ..area.affine2d import angle_scale, apply, compose, invert, resize, scaling, similarity, warp
-from ..area.pose_check import ShiftCorrelator, TargetPyramid, oriented_channels
+from ..descriptors import rift
+from ..estimation.affine2d import angle_scale, apply, compose, invert, resize, scaling, similarity, warp
 from ..estimation.ransac import ransac_or_none
-from ..features import rift
+from ..matching.pose_check import ShiftCorrelator, TargetPyramid, oriented_channels
 from ..progress import Monitor
 from ..refine import STRUCTURAL_REFINEMENT
 from ..types import Matches

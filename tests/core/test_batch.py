@@ -71,7 +71,7 @@ def test_a_local_cluster_registers_records_failures_and_resumes(tmp_path, demo_p
 @pytest.fixture
 def cluster(tmp_path):
     """A scheduler and two single-threaded workers, each its own process (as on a real cluster)."""
-    from hamta.bench.reproductions.batch import DaskProcesses
+    from hamta.bench.goals.batch import DaskProcesses
 
     processes = DaskProcesses(2, str(tmp_path))
     with processes as address:

@@ -3,7 +3,7 @@ import cv2
 import numpy as np
 import pytest
 
-from hamta.core.features.censure import (
+from hamta.core.detectors.censure import (
     OCTAGONS,
     CensureDetector,
     OctagonSums,

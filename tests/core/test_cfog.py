@@ -6,8 +6,8 @@ import pytest
 from hamta.bench.families import CaseSpec, build_case
 from hamta.bench.synthetic import make_landscape
 from hamta.core import RegisterOptions, register
-from hamta.core.area.cfog import cfog, ncc_surface, peak_offset
-from hamta.core.area.multimodal import apply, dense_matches, search_similarity, similarity
+from hamta.core.descriptors.cfog import cfog, ncc_surface, peak_offset
+from hamta.core.matching.multimodal import apply, dense_matches, search_similarity, similarity
 
 
 def _landscape():

@@ -145,3 +145,63 @@ def test_lint_passes_in_a_clone_named_hamta(tmp_path):
             shutil.copy(REPO / name, clone / name)
     run = subprocess.run([ruff, "check", "--no-cache", "."], cwd=clone, capture_output=True, text=True)
     assert run.returncode == 0, run.stdout + run.stderr
+
+
+# Inside the package, each unit imports only from units listed before it (a lower layer): the
+# engine's folders in data-flow order, then what stands on the engine. Units on one line never
+# import each other.
+LAYERS = (
+    ("core.version", "core.errors", "core.coords", "core.types"),
+    ("core.options", "core.progress"),
+    ("core.io", "core.preprocess", "core.detectors", "core.estimation"),
+    ("core.descriptors",),
+    ("core.matching",),
+    ("core.refine", "core.verify"),
+    ("core.local", "core.methods", "core.auto", "core.result"),
+    ("core.pipeline", "core.mapping", "core.outputs"),
+    ("core.run",),
+    ("core.batch",),
+    ("core",),
+    ("bench", "processing"),
+    ("cli", "plugin"),
+)
+RANK = {unit: i for i, layer in enumerate(LAYERS) for unit in layer}
+
+
+def _unit(module: str):
+    """The layer unit of a module: a folder (or top-level module) of ``core``, else a top-level folder."""
+    parts = module.split(".")
+    if parts[0] != "hamta" or len(parts) < 2:
+        return None
+    if parts[1] != "core":
+        return parts[1]
+    inside = len(parts) > 2 and ((REPO / "core" / parts[2]).is_dir() or (REPO / "core" / f"{parts[2]}.py").exists())
+    return f"core.{parts[2]}" if inside else "core"
+
+
+def test_imports_go_down_the_layers_only():
+    """Function-level imports included: no unit imports a unit of its own layer or one above it."""
+    offenders, unknown = [], set()
+    for top in ("core", "cli", "bench", "processing", "plugin"):
+        for path in (REPO / top).rglob("*.py"):
+            me = _unit(_module_name(path))
+            if me not in RANK:
+                unknown.add(me)
+                continue
+            for node in ast.walk(ast.parse(path.read_text(), str(path))):
+                for module in _resolve(node, path):
+                    other = _unit(module)
+                    if other is None or other == me:
+                        continue
+                    if other not in RANK:
+                        unknown.add(other)
+                    elif RANK[other] >= RANK[me]:
+                        offenders.append(f"{path.relative_to(REPO)}:{node.lineno} ({me}) imports {module} ({other})")
+    assert not unknown, f"units missing from LAYERS: {sorted(unknown)}"
+    assert not offenders, "\n".join(offenders)
+
+
+def test_no_engine_module_is_longer_than_400_lines():
+    long = [f"{p.relative_to(REPO)}: {n}" for p in (REPO / "core").rglob("*.py")
+            if (n := len(p.read_text().splitlines())) > 400]
+    assert not long, long

@@ -8,9 +8,10 @@ import pytest
 
 from hamta.bench.families import CaseSpec, build_case
 from hamta.core import RegisterOptions, register
-from hamta.core.area.multimodal import apply, dense_matches, search_similarity
-from hamta.core.features import lines as ln
+from hamta.core.detectors import lines as ln
+from hamta.core.estimation import triplets
 from hamta.core.matching import spectral
+from hamta.core.matching.multimodal import apply, dense_matches, search_similarity
 from hamta.core.methods.lines_spectral import LinesParams, match_intersections, match_lines
 
 
@@ -147,7 +148,7 @@ def test_degenerate_inputs_give_empty_results():
     empty = ln.Intersections(np.zeros((2, 2)), np.zeros((2, 2), int), np.zeros(2))
     i, j, s = match_intersections(empty, empty, (50, 50), (50, 50), LinesParams())
     assert len(i) == len(j) == len(s) == 0
-    affine, inliers = spectral.triplet_clustering(np.zeros((2, 2)), np.zeros((2, 2)), radius_px=5, inlier_px=3)
+    affine, inliers = triplets.triplet_clustering(np.zeros((2, 2)), np.zeros((2, 2)), radius_px=5, inlier_px=3)
     assert affine is None and not inliers.any()
     assert spectral.cell_hausdorff([]).shape == (0, 0)
     img = np.ones((40, 40), np.float32)
@@ -164,7 +165,7 @@ def test_triplet_clustering_finds_the_transform_among_outliers():
     dst = apply(true, src) + rng.normal(0, 0.5, src.shape)
     bad = rng.random(30) < 0.6
     dst[bad] = rng.uniform(0, 500, (bad.sum(), 2))
-    affine, inliers = spectral.triplet_clustering(src, dst, radius_px=8.0, inlier_px=3.0)
+    affine, inliers = triplets.triplet_clustering(src, dst, radius_px=8.0, inlier_px=3.0)
     assert np.array_equal(inliers, ~bad)
     assert np.abs(apply(affine, src[~bad]) - apply(true, src[~bad])).max() < 2.0
 

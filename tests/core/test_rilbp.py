@@ -7,8 +7,8 @@ from hamta.bench.cases import similarity_case
 from hamta.core import RegisterOptions, register
 from hamta.core.descriptors.cslbp import cslbp_descriptors
 from hamta.core.descriptors.rilbp import RilbpParams, dimension, rilbp_descriptors, round_half_away, sub_region_counts
-from hamta.core.features.patches import dominant_orientation, sample_patches
-from hamta.core.features.sift import sift_descriptors
+from hamta.core.descriptors.sift import sift_descriptors
+from hamta.core.detectors.patches import dominant_orientation, sample_patches
 
 
 @pytest.fixture(scope="module")

@@ -8,9 +8,9 @@ import pytest
 from hamta.bench.families import CaseSpec, build_case, speckle
 from hamta.core import RegisterOptions, register
 from hamta.core.descriptors.sift_descriptor import descriptors, orientations
-from hamta.core.features.nonlinear import aos_step, contrast_factor, pm_conductance
-from hamta.core.features.phase_congruency import phase_congruency
-from hamta.core.features.roewa import roewa_gradient, roewa_magnitude
+from hamta.core.detectors.nonlinear import aos_step, contrast_factor, pm_conductance
+from hamta.core.detectors.phase_congruency import phase_congruency
+from hamta.core.detectors.roewa import roewa_gradient, roewa_magnitude
 from hamta.core.preprocess.sar import lee_filter, log_scaled, normalised_amplitude
 
 

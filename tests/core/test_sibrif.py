@@ -6,7 +6,7 @@ import pytest
 from hamta.bench.cases import similarity_case
 from hamta.core import RegisterOptions, register
 from hamta.core.descriptors.pca_sift import gradient_vectors, load_basis
-from hamta.core.features.rbrief import intensity_centroid_angle, rbrief_descriptors
+from hamta.core.descriptors.rbrief import intensity_centroid_angle, rbrief_descriptors
 from hamta.core.matching.nearest import self_similar
 from hamta.core.methods.sibrif import SibrifFaithfulParams, SibrifParams, edge_image, selective_vote
 from hamta.core.preprocess.edges import sobel_edge_image
@@ -94,7 +94,7 @@ def test_product_sibrif_survives_scale_changes_the_paper_does_not(tmp_path, land
 
 
 def test_pca_sift_basis_is_orthonormal_and_fits_real_imagery(landsat):
-    from hamta.core.features.sift import OPENCV_SIFT_BIAS_PX, SiftDetector, keypoints_from_opencv
+    from hamta.core.descriptors.sift import OPENCV_SIFT_BIAS_PX, SiftDetector, keypoints_from_opencv
     from hamta.core.io.raster import open_raster, read_image, resolve_bands
     from hamta.core.preprocess.normalize import stretch_to_uint8
 

@@ -1,6 +1,6 @@
 import numpy as np
 
-from hamta.core.features.sift import sift_features
+from hamta.core.descriptors.sift import sift_features
 from hamta.core.io.raster import open_raster, read_image, resolve_bands
 from hamta.core.matching.nearest import match_features
 from hamta.core.preprocess.normalize import detection_mask, stretch_to_uint8

@@ -7,8 +7,8 @@ import pytest
 
 from hamta.bench.multimodal_set import build
 from hamta.core import RegisterOptions, register
-from hamta.core.features import rift
-from hamta.core.features.phase_congruency import log_gabor_maps
+from hamta.core.descriptors import rift
+from hamta.core.detectors.phase_congruency import log_gabor_maps
 
 
 def _scene(size=256, seed=4):

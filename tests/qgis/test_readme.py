@@ -33,7 +33,7 @@ def checkout(folder: pathlib.Path) -> pathlib.Path:
 @pytest.mark.skipif(shutil.which("qgis_process.bin", path="/usr/bin:/bin") is None, reason="qgis_process is not "
                     "installed")
 def test_the_headless_block_runs_as_printed(tmp_path):
-    from hamta.cli.demo import make_demo_pair
+    from hamta.bench.sample import make_demo_pair
 
     repo = checkout(tmp_path / "hamta")
     make_demo_pair(str(repo / "demo-output" / "sample"))

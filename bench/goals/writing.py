@@ -23,7 +23,7 @@ import time
 import numpy as np
 
 from ..memory import PeakRss, measured
-from .base import Reproduction
+from ..study import Study
 
 TARGET_SIDE = 4064  # 16.5 Mpx
 
@@ -92,7 +92,7 @@ def _writing(unit: str, folder: str) -> list:
 
 
 def _fixed_cost(folder: str) -> list:
-    from ...cli.demo import make_demo_pair
+    from ..sample import make_demo_pair
 
     pair = make_demo_pair(os.path.join(folder, "small"))
     beside = os.path.join(os.path.dirname(sys.executable), "hamta")  # this environment's command, not another one
@@ -139,4 +139,4 @@ def tables(rows) -> list:
              "rows": fixed, "note": "Goal: fixed cost <= 1 s."}]
 
 
-REPRODUCTION = Reproduction("writing", ("sift",), ("writing",), units, run_unit, tables)
+STUDY = Study("writing", ("sift",), ("writing",), units, run_unit, tables)

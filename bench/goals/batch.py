@@ -16,7 +16,7 @@ import subprocess
 import sys
 import time
 
-from .base import Reproduction
+from ..study import Study
 
 PAIRS = 20
 
@@ -26,9 +26,9 @@ def units(config):
 
 
 def run_unit(unit, config) -> list:
-    from ...cli.demo import make_demo_pair
     from ...core.batch import read_jobs, run_batch
     from ...core.batch.task import BatchSettings, register_job
+    from ..sample import make_demo_pair
 
     folder = os.path.join(config.out_dir, "cases", "batch")
     shutil.rmtree(folder, ignore_errors=True)
@@ -97,4 +97,4 @@ def tables(rows) -> list:
                      "(ratio >= 0.9). The cluster time includes scheduling and result gathering, not its start-up."}]
 
 
-REPRODUCTION = Reproduction("batch", ("sift",), ("batch",), units, run_unit, tables)
+STUDY = Study("batch", ("sift",), ("batch",), units, run_unit, tables)

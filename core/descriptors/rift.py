@@ -21,8 +21,8 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
+from ..detectors.phase_congruency import RIFT_PARAMS, log_gabor_maps
 from ..types import Features, Keypoints
-from .phase_congruency import RIFT_PARAMS, log_gabor_maps
 
 NORIENT = RIFT_PARAMS.norient  # MIM values = histogram bins
 PATCH = 96  # RIFT's descriptor patch, px

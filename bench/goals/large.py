@@ -6,7 +6,7 @@ registered the pair and wrote every output; the IO floor (both files read once p
 """
 from __future__ import annotations
 
-from .base import Reproduction
+from ..study import Study
 
 
 def tables(rows) -> list:
@@ -27,4 +27,4 @@ def tables(rows) -> list:
                      "the displacement field it cannot follow."}]
 
 
-REPRODUCTION = Reproduction("large", ("sift", "auto"), ("large",), None, None, tables)
+STUDY = Study("large", ("sift", "auto"), ("large",), None, None, tables)

@@ -22,7 +22,7 @@ import numpy as np
 from scipy import fft as sfft
 
 from ..coords import matrix_corner_to_opencv
-from .affine2d import compose, invert, resize
+from ..estimation.affine2d import compose, invert, resize
 
 
 def _erode(valid: np.ndarray, r: int) -> np.ndarray:

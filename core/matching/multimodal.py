@@ -19,8 +19,8 @@ import cv2
 import numpy as np
 from scipy import fft as sfft
 
-from .affine2d import apply, invert, similarity, warp
-from .cfog import cfog, ncc_surface, peak_offset
+from ..descriptors.cfog import cfog, ncc_surface, peak_offset
+from ..estimation.affine2d import apply, invert, similarity, warp
 
 
 def _centred(desc: np.ndarray, valid: np.ndarray, local_sigma: float = 0.0) -> np.ndarray:

@@ -11,8 +11,8 @@ import rasterio
 from affine import Affine
 from rasterio.errors import NotGeoreferencedWarning
 
-from ..bench.synthetic import make_landscape, similarity_matrix, warp_to_target
 from ..core.coords import apply_matrix
+from .synthetic import make_landscape, similarity_matrix, warp_to_target
 
 DEMO_CRS = "EPSG:32639"  # WGS 84 / UTM zone 39N
 DEMO_TRANSFORM = Affine(10.0, 0.0, 552000.0, 0.0, -10.0, 3620000.0)  # 10 m pixels

@@ -1,0 +1,2 @@
+"""Engineering goals the bench measures (writing speed, batch throughput, big scenes),
+kept apart from the papers' reproductions."""

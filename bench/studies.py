@@ -1,0 +1,15 @@
+"""Every study the bench runs (see :mod:`hamta.bench.study`)."""
+from __future__ import annotations
+
+
+def all_studies():
+    """Every study, the papers' reproductions first."""
+    from .goals.batch import STUDY as batch
+    from .goals.large import STUDY as large
+    from .goals.writing import STUDY as writing
+    from .reproductions.lines_spectral import STUDY as lines_spectral
+    from .reproductions.ndsift import STUDY as ndsift
+    from .reproductions.rilbp import STUDY as rilbp
+    from .reproductions.sibrif import STUDY as sibrif
+
+    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch]

@@ -1,1 +1,0 @@
-"""Area-based (intensity/frequency-domain) matching."""
