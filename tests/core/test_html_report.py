@@ -17,7 +17,11 @@ from hamta.core.errors import RegistrationCanceled
 from hamta.core.estimation.models import LinearModel, PolynomialModel
 from hamta.core.io.raster import open_raster
 from hamta.core.outputs import html as report_html
-from hamta.core.outputs.html import Preview, read_preview, warp_to_reference, write_html_report
+from hamta.core.outputs import html_sections as report_sections
+from hamta.core.outputs import preview as report_preview
+from hamta.core.outputs import scale as report_scale
+from hamta.core.outputs.html import write_html_report
+from hamta.core.outputs.preview import Preview, read_preview, stretch, warp_to_reference
 from hamta.core.progress import Monitor
 
 IMG = re.compile(r'<img[^>]*?src="data:image/(?:png|jpeg);base64,([A-Za-z0-9+/=]+)"[^>]*?alt="([^"]*)"')
@@ -72,11 +76,11 @@ def test_report_is_self_contained_and_every_image_is_real(sift_result, tmp_path)
 
 def test_gcp_table_is_capped(sift_result, tmp_path):
     text = _write(sift_result, tmp_path)
-    omitted = len(sift_result.gcps) - report_html.MAX_TABLE_ROWS
+    omitted = len(sift_result.gcps) - report_sections.MAX_TABLE_ROWS
     assert omitted > 0
     assert f"{omitted} more rows not shown" in text
-    assert f"<td class=n>{report_html.MAX_TABLE_ROWS}</td>" in text
-    assert f"<td class=n>{report_html.MAX_TABLE_ROWS + 1}</td>" not in text
+    assert f"<td class=n>{report_sections.MAX_TABLE_ROWS}</td>" in text
+    assert f"<td class=n>{report_sections.MAX_TABLE_ROWS + 1}</td>" not in text
 
 
 def test_auto_attempts_notes_and_escaping(sift_result, tmp_path):
@@ -119,7 +123,7 @@ def test_warp_follows_the_model_to_the_pixel():
     reference pixel (x, y) shows target pixel (x - 3, y + 2)."""
     rng = np.random.default_rng(0)
     tgt_img = cv2.GaussianBlur(rng.uniform(0, 255, (120, 160)), (0, 0), 2).astype(np.float32)
-    tgt = Preview(report_html.stretch(tgt_img, np.ones(tgt_img.shape, bool)), np.ones(tgt_img.shape, bool), (1.0, 1.0))
+    tgt = Preview(stretch(tgt_img, np.ones(tgt_img.shape, bool)), np.ones(tgt_img.shape, bool), (1.0, 1.0))
     ref = Preview(np.zeros((100, 140), np.uint8), np.ones((100, 140), bool), (1.0, 1.0))
     src = rng.uniform(0, 160, (20, 2))
     models = [LinearModel("affine", np.array([[1.0, 0, 3], [0, 1, -2], [0, 0, 1]])),
@@ -139,13 +143,13 @@ def test_preview_coordinates_put_pixel_centres_at_integers():
 
 def test_previews_are_read_decimated(raster_writer, monkeypatch):
     shapes = []
-    real = report_html.read_image
+    real = report_preview.read_image
 
     def spy(info, bands, window=None, out_shape=None, dataset=None):
         shapes.append(out_shape)
         return real(info, bands, window, out_shape, dataset)
 
-    monkeypatch.setattr(report_html, "read_image", spy)
+    monkeypatch.setattr(report_preview, "read_image", spy)
     rng = np.random.default_rng(1)
     big = open_raster(raster_writer("big.tif", rng.integers(0, 255, (1500, 2400), dtype=np.uint8)))
     p = read_preview(big, None)
@@ -261,10 +265,10 @@ def test_pixel_mode_has_a_banner_and_no_map_units(sift_result, tmp_path):
 
 
 def test_describe_crs_names_code_and_unit():
-    assert report_html.describe_crs(CRS.from_epsg(32632)) == ("WGS 84 / UTM zone 32N (EPSG:32632)", "metre")
-    assert report_html.describe_crs(CRS.from_epsg(4326)) == ("WGS 84 (EPSG:4326)", "degree")
-    name, unit = report_html.describe_crs(CRS.from_proj4("+proj=tmerc +lon_0=13.3 +ellps=GRS80 +units=us-ft"))
+    assert report_scale.describe_crs(CRS.from_epsg(32632)) == ("WGS 84 / UTM zone 32N (EPSG:32632)", "metre")
+    assert report_scale.describe_crs(CRS.from_epsg(4326)) == ("WGS 84 (EPSG:4326)", "degree")
+    name, unit = report_scale.describe_crs(CRS.from_proj4("+proj=tmerc +lon_0=13.3 +ellps=GRS80 +units=us-ft"))
     assert name.endswith("(no EPSG code)") and unit == "US survey foot"
-    scale = report_html.MapScale("WGS 84 (EPSG:4326)", "degree", 1e-4)
+    scale = report_scale.MapScale("WGS 84 (EPSG:4326)", "degree", 1e-4)
     assert scale.px(0.5) == "0.000050°"
-    assert report_html.MapScale("x", "US survey foot", 2.0).px(1.25) == "2.50 US ft"
+    assert report_scale.MapScale("x", "US survey foot", 2.0).px(1.25) == "2.50 US ft"

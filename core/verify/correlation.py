@@ -1,0 +1,57 @@
+"""Correlating a site's template with the target, in the frequency domain: the spectra of CFOG
+descriptor templates and search areas (:class:`TemplateSpectrum`, :class:`SearchSpectrum`), whose
+product gives the normalised cross-correlation surface over the search range, the template turned
+and mirrored (wrong alignments for the chance estimate), and how far a surface's zero-offset value
+stands above the rest. Coordinates: surfaces are indexed by offset in full-resolution reference
+pixels, ``s`` (the search range) at zero offset.
+"""
+from __future__ import annotations
+
+import cv2
+import numpy as np
+
+
+def turned(stack: np.ndarray):
+    """The CFOG template turned by 180 degrees and mirrored in x and in y, its orientation channels
+    following (orientations are modulo 180 degrees, so a half turn keeps them; a mirror reverses them)."""
+    reverse = np.r_[0, np.arange(len(stack) - 1, 0, -1)]
+    return (stack[:, ::-1, ::-1], stack[reverse][:, :, ::-1], stack[reverse][:, ::-1, :])
+
+
+class TemplateSpectrum:
+    """A (C, t, t) descriptor template, zero-mean over all channels, as the spectrum of its
+    zero-padded ``shape`` canvas, with its norm."""
+
+    def __init__(self, template: np.ndarray, shape):
+        t = template - template.mean()
+        self.norm = float(np.sqrt((t ** 2).sum()))
+        self.spectrum = np.conj(np.fft.rfft2(t, shape, axes=(1, 2)))
+        self.size = template.size
+
+
+class SearchSpectrum:
+    """A (C, t + 2s, t + 2s) descriptor search area as spectra, with its window sums for NCC."""
+
+    def __init__(self, search: np.ndarray, side: int):
+        self.spectrum = np.fft.rfft2(search, axes=(1, 2))
+        self.shape = search.shape[1:]
+        w = (side, side)
+        self.s1 = cv2.boxFilter(search.sum(axis=0), -1, w, normalize=False, anchor=(0, 0),
+                                borderType=cv2.BORDER_CONSTANT)
+        self.s2 = cv2.boxFilter((search ** 2).sum(axis=0), -1, w, normalize=False, anchor=(0, 0),
+                                borderType=cv2.BORDER_CONSTANT)
+
+    def ncc(self, template: "TemplateSpectrum", s: int) -> np.ndarray:
+        """(2s + 1, 2s + 1) normalised cross-correlation surface (as :func:`ncc_surface`)."""
+        num = np.fft.irfft2((self.spectrum * template.spectrum).sum(axis=0), self.shape)[:2 * s + 1, :2 * s + 1]
+        s1, s2 = self.s1[:2 * s + 1, :2 * s + 1], self.s2[:2 * s + 1, :2 * s + 1]
+        var = np.maximum(s2 - s1 ** 2 / template.size, 0.0)
+        return num / np.maximum(np.sqrt(var) * template.norm, 1e-9)
+
+
+def zero_score(surface: np.ndarray, s: int) -> float:
+    """How far the correlation at zero offset stands above the surface's values 4 px or more away
+    (in their standard deviations)."""
+    yy, xx = np.mgrid[-s:s + 1, -s:s + 1]
+    ring = surface[np.maximum(np.abs(xx), np.abs(yy)) >= 4]
+    return float((surface[s, s] - ring.mean()) / max(float(ring.std()), 1e-6))

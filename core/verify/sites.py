@@ -1,0 +1,134 @@
+"""Where the check looks and what it reads there: the target's footprint and its overlap with the
+reference, the regular grid of sites over the overlap (chosen by position alone), the template
+side, and, per site, the CFOG stacks of the reference template and of the target resampled through
+the model (a local affine inverse around the site) onto the template's search area. Coordinates:
+sites, the overlap and templates are full-resolution reference pixels (corner convention); the
+inverse maps them into target pixels for reading.
+"""
+from __future__ import annotations
+
+import math
+from typing import Optional, Tuple
+
+import cv2
+import numpy as np
+from rasterio.windows import Window
+from shapely.geometry import Point, Polygon, box
+from shapely.prepared import prep
+
+from ..coords import raster_outline
+from ..descriptors.cfog import cfog
+from ..estimation.models import local_jacobian
+from ..io.raster import RasterInfo, read_image
+from .params import VerifyParams
+
+
+def footprint(model, target: RasterInfo) -> np.ndarray:
+    """The target's outline in reference px (64 points), as ``model`` maps it."""
+    return model.apply(raster_outline(target.width, target.height, 17))
+
+
+def reference_overlap(outline: np.ndarray, reference: RasterInfo):
+    """The part of the reference that ``outline`` covers (a shapely polygon); None when empty."""
+    if not np.isfinite(outline).all():
+        return None
+    poly = Polygon(outline)
+    poly = poly if poly.is_valid else poly.buffer(0)
+    overlap = poly.intersection(box(0, 0, reference.width, reference.height))
+    return None if overlap.is_empty or overlap.area <= 0 else overlap
+
+
+def overlap_grid(overlap, n: int = 20) -> np.ndarray:
+    """Points of a regular ``n x n`` grid over the overlap's bounding box that fall inside it."""
+    if overlap is None:
+        return np.zeros((0, 2))
+    x0, y0, x1, y1 = overlap.bounds
+    gx, gy = np.meshgrid(x0 + (np.arange(n) + 0.5) * (x1 - x0) / n, y0 + (np.arange(n) + 0.5) * (y1 - y0) / n)
+    pts = np.column_stack([gx.ravel(), gy.ravel()])
+    inside = prep(overlap)
+    return pts[np.array([inside.contains(Point(x, y)) for x, y in pts], bool)]
+
+
+def template_side(overlap, params: VerifyParams) -> int:
+    """Template side for about ``params.target_sites`` sites over the overlap (even, within limits)."""
+    area = 0.0 if overlap is None else float(overlap.area)
+    side = math.sqrt(area / params.target_sites) if area > 0 else params.template_px
+    return int(2 * round(min(max(side, params.template_px), params.max_template_px) / 2))
+
+
+def site_grid(outline: np.ndarray, overlap, reference: RasterInfo, side: int, params: VerifyParams) -> np.ndarray:
+    """Site centres (K, 2) in reference px: a regular grid, spacing at least one template, over the
+    overlap; templates lie inside the reference and the target neighbourhoods they are compared
+    with inside the target."""
+    if overlap is None:
+        return np.zeros((0, 2))
+    lo = np.maximum(outline.min(axis=0), 0) + side / 2.0 + 1
+    hi = np.minimum(outline.max(axis=0), [reference.width, reference.height]) - side / 2.0 - 1
+    if np.any(hi < lo):
+        return np.zeros((0, 2))
+    step = max(math.sqrt(float(overlap.area) / params.max_sites), float(side))
+    nx, ny = int((hi[0] - lo[0]) // step) + 1, int((hi[1] - lo[1]) // step) + 1
+    xs = (lo[0] + hi[0]) / 2 + (np.arange(nx) - (nx - 1) / 2) * step
+    ys = (lo[1] + hi[1]) / 2 + (np.arange(ny) - (ny - 1) / 2) * step
+    gx, gy = np.meshgrid(xs, ys)
+    pts = np.column_stack([gx.ravel(), gy.ravel()])
+    margin = side / 2.0 + params.search_px + 2
+    poly = outline.astype(np.float32)
+    inside = np.array([cv2.pointPolygonTest(poly, (float(x), float(y)), True) >= margin for x, y in pts], bool)
+    return pts[inside] if len(pts) else pts
+
+
+def inverse_at(model, p: np.ndarray, target: RasterInfo) -> Optional[Tuple[np.ndarray, np.ndarray]]:
+    """(q, J^-1): the target px q that ``model`` maps onto reference px ``p`` (Newton's method), and
+    the inverse of the model's Jacobian there, for a local affine inverse around ``p``."""
+    if getattr(model, "matrix", None) is not None:
+        q = model.inverse().apply(p[None])[0]
+        return q, np.linalg.inv(local_jacobian(model, q[None])[0])
+    c = np.array([target.width / 2.0, target.height / 2.0])
+    j = local_jacobian(model, c[None])[0]
+    q = c + np.linalg.solve(j, p - model.apply(c[None])[0])
+    for _ in range(8):
+        j = local_jacobian(model, q[None])[0]
+        step = np.linalg.solve(j, p - model.apply(q[None])[0])
+        q = q + step
+        if np.abs(step).max() < 1e-4:
+            break
+    if not np.isfinite(q).all() or np.abs(model.apply(q[None])[0] - p).max() > 0.05:
+        return None
+    return q, np.linalg.inv(j)
+
+
+def read_site(model, p, target, target_bands, tds, reference, reference_bands, rds, side: int, search: int):
+    """CFOG stacks of the reference template at ``p`` and of the target resampled through the model
+    onto the template's search area; None when the site cannot be compared (outside an image,
+    masked pixels, no structure)."""
+    t, s = side, search
+    x0, y0 = int(math.floor(p[0])) - t // 2, int(math.floor(p[1])) - t // 2
+    if x0 < 0 or y0 < 0 or x0 + t > reference.width or y0 + t > reference.height:
+        return None
+    tmpl, ok = read_image(reference, reference_bands, Window(x0, y0, t, t), dataset=rds)
+    if ok.mean() < 0.95 or tmpl[ok].std() < 1e-6:
+        return None
+    inverse = inverse_at(model, np.asarray(p, float), target)
+    if inverse is None:
+        return None
+    q, jinv = inverse
+    size = t + 2 * s
+    gx, gy = np.meshgrid(np.arange(size) + x0 - s + 0.5, np.arange(size) + y0 - s + 0.5)
+    src = q + (np.column_stack([gx.ravel(), gy.ravel()]) - p) @ jinv.T
+    c0, r0 = np.floor(src.min(axis=0)).astype(int) - 2
+    c1, r1 = np.ceil(src.max(axis=0)).astype(int) + 2
+    if c1 <= 0 or r1 <= 0 or c0 >= target.width or r0 >= target.height or (c1 - c0) * (r1 - r0) > 16 * size * size:
+        return None
+    # The window may reach past the target (a turned square's bounding box); what is sampled must not.
+    patch, pok = read_image(target, target_bands, Window(c0, r0, c1 - c0, r1 - r0), dataset=tds)
+    if pok.mean() < 0.5:
+        return None
+    patch = np.where(pok, patch, np.float32(patch[pok].mean())).astype(np.float32)
+    mx = (src[:, 0] - c0 - 0.5).reshape(size, size).astype(np.float32)
+    my = (src[:, 1] - r0 - 0.5).reshape(size, size).astype(np.float32)
+    warped = cv2.remap(patch, mx, my, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+    wok = cv2.remap(pok.astype(np.uint8), mx, my, cv2.INTER_NEAREST, borderValue=0) > 0
+    if wok.mean() < 0.95:
+        return None
+    return cfog(tmpl, valid=ok), cfog(warped, valid=wok)

@@ -1,0 +1,133 @@
+"""The verdict rule. :func:`judge` gives one result's verdict from its sites' correlation peaks,
+offsets and zero-offset lifts (against the same template compared with wrong alignments: chance),
+with the reasons it is not verified. :func:`corroborating`, :func:`corroborate` and :func:`result_rank`
+carry it across results (``auto``): two results of different methods that are each 'suspect' and
+whose models agree within the tolerance verify each other. Coordinates: sites, offsets and
+tolerances are full-resolution reference pixels; :func:`model_distance` compares two models at
+target pixels, in reference pixels.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from .field import error_field, shared_error, site_coverage
+from .params import Verification, VerifyParams
+from .statistics import binomial_tail, chance_rate, mann_whitney_greater
+
+VERDICT_RANK = {"verified": 2, "suspect": 1, "failed": 0}
+
+
+def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: float = 0.0) -> Verification:
+    """The verdict from per-site results: ``offsets`` (n, 1 + k, 2) and ``peaks`` (n, 1 + k) of each
+    site's template against the target at its own site (column 0) and at k other sites (chance).
+    ``extent`` (m, 2) are points over the overlap where the error field is evaluated."""
+    measured = np.isfinite(peaks[:, 0])
+    n = int(measured.sum())
+    null_valid = np.isfinite(peaks[:, 1:])
+    null_peaks = peaks[:, 1:][null_valid]
+    clear_level, floor = (np.quantile(null_peaks, [0.9, 0.5]) if len(null_peaks) >= 8 else (1.0, 1.0))
+    near = np.linalg.norm(np.nan_to_num(offsets, nan=1e9), axis=2) <= params.agree_px
+    peak = np.nan_to_num(peaks, nan=-1.0)
+    # A site agrees when its peak (not the weakest half of chance peaks) is near zero offset; it
+    # contradicts when a clear peak (above 90 % of chance peaks) lies elsewhere.
+    agree_all = near & (peak >= floor)
+    agree, contradict = agree_all[:, 0], ~near[:, 0] & (peak[:, 0] >= clear_level) & measured
+    # Chance rates from the mismatched sites, floored by what uniformly placed chance peaks give:
+    # half pass the floor and land in the agreement disc so often; a tenth are clear, and so few
+    # of those land within 1 px (precise agreement: strong evidence from few sites).
+    cells = (2 * params.search_px + 1) ** 2
+    rate = chance_rate(agree_all[:, 1:], null_valid, 0.5 * math.pi * params.agree_px ** 2 / cells)
+    precise_all = (np.linalg.norm(np.nan_to_num(offsets, nan=1e9), axis=2) <= 1.0) & (peak >= clear_level)
+    precise_rate = chance_rate(precise_all[:, 1:], null_valid, 0.1 * math.pi / cells)
+    k, n_contra = int(agree.sum()), int(contradict.sum())
+    n_precise = int(precise_all[:, 0].sum())
+    chance = min(binomial_tail(k, n, rate), binomial_tail(n_precise, n, precise_rate))
+    # Weak sites rarely peak exactly, but at a right model their correlation at zero offset still
+    # stands above the rest of their surface more often than at wrong alignments.
+    z = zero_z[:, 0]
+    z_null = zero_z[:, 1:][np.isfinite(zero_z[:, 1:])]
+    z_level = float(np.quantile(z_null, 0.95)) if len(z_null) >= 8 else np.inf
+    lifted = measured & (np.nan_to_num(z, nan=-np.inf) > z_level)
+    z_hits = int(lifted.sum())
+    z_chance = binomial_tail(z_hits, n, 0.05)
+    z_mw = (mann_whitney_greater(z[measured], z_null)
+            if n and len(z_null) >= 8 else 1.0)
+    significant = chance <= params.max_chance or (z_chance <= params.max_z_chance and z_mw <= params.max_rank_chance)
+    n_clear = k + n_contra
+    coverage = site_coverage(sites[agree | lifted], sites[measured])
+    error, bound, scatter = error_field(sites[agree], offsets[agree, 0], extent)
+    clear = measured & (peak[:, 0] >= clear_level) & np.isfinite(offsets[:, 0]).all(axis=1)
+    shared = shared_error(sites[clear], offsets[clear, 0], extent, params.agree_px)
+    reasons = []
+    if n == 0:
+        reasons.append("no site of the overlap could be compared (too small an overlap, masked pixels, or no "
+                       "structure)")
+    if k < params.min_agree:
+        reasons.append(f"only {k} of {n} sites agree with the model (at least {params.min_agree} are needed)")
+    if not significant:
+        reasons.append(f"wrong alignments would give this much agreement with probability {min(chance, z_chance):.1e}")
+    if n_clear and n_contra > params.max_contradict * n_clear:
+        reasons.append(f"{n_contra} of {n_clear} clear sites contradict the model")
+    if shared is not None and shared > params.tolerance_px:
+        reasons.append(f"the clear sites agree on an error of {shared:.1f} px of the model")
+    if coverage < params.min_coverage:
+        reasons.append(f"the sites that support the model span only {100 * coverage:.0f} % of the overlap's extent")
+    if bound is not None and bound > params.tolerance_px:
+        reasons.append(f"estimated error {error:.1f} px (bound {bound:.1f} px) exceeds the tolerance of "
+                       f"{params.tolerance_px:g} px")
+    if not reasons:
+        verdict = "verified"
+    elif k >= 3 and min(chance, z_chance) < params.max_suspect_chance:
+        verdict = "suspect"
+    else:
+        verdict = "failed"
+    return Verification(verdict, tuple(reasons), params.tolerance_px, params.template_px, n, k, n_contra, n_clear,
+                        float(rate), chance, coverage, error, bound, scatter, round(elapsed, 4), sites,
+                        offsets[:, 0], peaks[:, 0], agree, contradict, z_hits, z_chance, z_mw)
+
+
+def corroborating(result, earlier, tolerance_px: float):
+    """(an earlier result of another method, their distance) when both have partial support from the
+    independent check and their models agree within ``tolerance_px``; None otherwise."""
+    if result.verification.verdict != "suspect":
+        return None
+    for other in earlier:
+        if other.method == result.method or other.verification.verdict != "suspect":
+            continue
+        d = model_distance(result, other)
+        if d is not None and d <= tolerance_px:
+            return other, d
+    return None
+
+
+def model_distance(a, b, n: int = 20):
+    """RMS distance (reference px) between two results' models over an ``n`` x ``n`` grid of target
+    points that ``a`` maps inside the reference; None when none does."""
+    t, r = a.target, a.reference
+    gx, gy = np.meshgrid((np.arange(n) + 0.5) * t.width / n, (np.arange(n) + 0.5) * t.height / n)
+    pts = np.column_stack([gx.ravel(), gy.ravel()])
+    pa = a.model.apply(pts)
+    inside = np.all(np.isfinite(pa), axis=1) & (pa[:, 0] >= 0) & (pa[:, 1] >= 0) & (pa[:, 0] <= r.width) & (
+        pa[:, 1] <= r.height)
+    if not inside.any():
+        return None
+    return float(np.sqrt(np.mean(np.sum((pa[inside] - b.model.apply(pts[inside])) ** 2, axis=1))))
+
+
+def corroborate(result, other, distance: float):
+    """``result`` verified by agreement with ``other``, an independent method's result."""
+    summary = (f"verified by agreement of independent estimates: {result.method} and {other.method} agree within "
+               f"{distance:.2f} px, each partly supported by the site check")
+    v = dataclasses.replace(result.verification, verdict="verified", reasons=(),
+                            corroboration={"method": other.method, "distance_px": distance, "summary": summary,
+                                           "own_reasons": list(result.verification.reasons)})
+    return dataclasses.replace(result, verification=v)
+
+
+def result_rank(result):
+    """Sort key of results, best last: the verdict, then agreeing sites, then the smaller error bound."""
+    v = result.verification
+    return VERDICT_RANK[v.verdict], v.n_agree, -(v.error_bound_px if v.error_bound_px is not None else 1e9)
