@@ -5,6 +5,8 @@ from typing import Optional
 
 import numpy as np
 
+from ..core.errors import HamtaError
+
 CORRECT_MATCH_PX = 3.0
 LOOSE_MATCH_PX = 10.0  # "nearly right": for methods whose papers judged matches by eye
 
@@ -14,10 +16,12 @@ def judge(case, result=None, error: Optional[BaseException] = None) -> dict:
     method's correct matches, the verdict of the independent check (a confident wrong answer is a
     verified result beyond the tolerance; a false flag a right result left unverified), and the
     self-reported figures. ``result`` is None on failure. A method that returned no matches has
-    precision 0. Cases without truth (``case.truth`` None) must not verify."""
+    precision 0. Cases without truth (``case.truth`` None) must not verify. An ``error`` that is not
+    a HamtaError (a bug inside a method: MethodCrashed) is a crash, never a success."""
     row = {"success": False, "rmse_cp": None, "max_cp": None, "ncm": 0, "ncm_loose": 0, "n_matches": 0,
            "precision": 0.0, "rmse_px": None, "rms_loo_px": None, "n_gcps": 0, "error": None, "verdict": None,
-           "verified": False, "false_verified": False, "false_flagged": False, "method_used": None}
+           "verified": False, "false_verified": False, "false_flagged": False, "method_used": None,
+           "crashed": error is not None and not isinstance(error, HamtaError)}
     if result is not None:
         v = result.verification
         matrix = getattr(result.model, "matrix", None)
@@ -25,7 +29,8 @@ def judge(case, result=None, error: Optional[BaseException] = None) -> dict:
                    quality={k: x for k, x in (v.to_dict() if v else {}).items() if k != "sites"},
                    auto=result.auto, model_matrix=None if matrix is None else np.asarray(matrix).tolist())
     if case.truth is None:  # nothing to find: any verified result is a confident wrong answer
-        row.update(success=result is None or not result.verified, false_verified=bool(result and result.verified),
+        row.update(success=(result is None or not result.verified) and not row["crashed"],
+                   false_verified=bool(result and result.verified),
                    error=None if error is None else f"{type(error).__name__}: {error}")
         if result is not None:
             row.update(rmse_px=result.stats["rmse_px"], n_gcps=result.stats["n_gcps"])

@@ -40,14 +40,15 @@ def summarise(rows: List[dict], methods: Sequence[str]) -> Dict[str, Dict[str, d
                 "n_verified_right": sum(bool(r.get("verified")) and r["success"] for r in rs),
                 "n_false_verified": sum(bool(r.get("false_verified")) for r in rs),
                 "n_false_flagged": sum(bool(r.get("false_flagged")) for r in rs),
+                "n_crashed": sum(bool(r.get("crashed")) for r in rs),
             }
     return out
 
 
 COLUMNS = [("method", "method"), ("success", "success"), ("verified", "right+verified"),
-           ("false_verified", "wrong verified"), ("false_flagged", "right flagged"), ("hard", "hard 1/3"),
-           ("median_rmse_cp", "RMSE_cp med"), ("p90_rmse_cp", "RMSE_cp p90"), ("median_ncm", "NCM med"),
-           ("median_precision", "precision med"), ("median_time_s", "time med (s)"),
+           ("false_verified", "wrong verified"), ("false_flagged", "right flagged"), ("crashed", "crashes"),
+           ("hard", "hard 1/3"), ("median_rmse_cp", "RMSE_cp med"), ("p90_rmse_cp", "RMSE_cp p90"),
+           ("median_ncm", "NCM med"), ("median_precision", "precision med"), ("median_time_s", "time med (s)"),
            ("time_ratio_to_sift", "time / SIFT"), ("median_peak_rss_mb", "peak MB")]
 
 
@@ -57,6 +58,7 @@ def _cells(method: str, s: dict) -> List[str]:
 
     return [method, f"{s['n_success']}/{s['n_cases']} ({100 * s['success_rate']:.0f}%)",
             f"{s.get('n_verified_right', 0)}", f"{s.get('n_false_verified', 0)}", f"{s.get('n_false_flagged', 0)}",
+            f"{s.get('n_crashed', 0)}",
             f"{100 * s.get('hardest_third_success', 0):.0f}%", num(s["median_rmse_cp"], ".3f"),
             num(s["p90_rmse_cp"], ".3f"), num(s["median_ncm"], ".0f"),
             num(s["median_precision"], ".2f"), num(s["median_time_s"], ".2f"), num(s["time_ratio_to_sift"], ".2f"),
@@ -101,7 +103,8 @@ def markdown(report: dict) -> str:
            "", "Success: the returned mapping's check-point RMSE ≤ 3 px (real pairs and the multimodal set: their "
            "own tolerance; should-fail cases: no verified result). right+verified: successes that the independent "
            "check also verified (what a user gets by default); wrong verified: confident wrong answers (verified "
-           "beyond the tolerance; the goal is 0); right flagged: successes left unverified. RMSE_cp statistics are "
+           "beyond the tolerance; the goal is 0); right flagged: successes left unverified; crashes: runs ended "
+           "by an internal error (a bug in a method, never a success; the goal is 0). RMSE_cp statistics are "
            "over successful cases only. NCM: returned matches within 3 px of the truth. time / SIFT: median "
            "per-case ratio to the SIFT baseline in the same run. hard 1/3: success on the third of the family's "
            "cases where SIFT's error is largest.", ""]

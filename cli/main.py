@@ -9,7 +9,8 @@ import sys
 import time
 from typing import List, Optional
 
-from ..core.errors import HamtaError, RegistrationCanceled
+from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
+from .options import FLAGS, settings_from
 from .progress import ProgressBar
 
 # Exit codes (documented in the README).
@@ -55,7 +56,7 @@ def cmd_register(args) -> int:
 
 def explain(exc: HamtaError) -> str:
     """The error's message, naming the option that lets the user go on as this command line spells it."""
-    return f"{exc} (--{exc.option.replace('_', '-')})." if exc.option else str(exc)
+    return f"{exc} ({FLAGS.get(exc.option, '--' + exc.option.replace('_', '-'))})." if exc.option else str(exc)
 
 
 def print_result(result, written) -> None:
@@ -136,7 +137,7 @@ def cmd_methods(args) -> int:
 
     from ..core.methods import all_methods
 
-    methods = sorted(all_methods().values(), key=lambda m: (m.menu_rank, m.name != "sift", m.name))
+    methods = list(all_methods().values())
     if not args.verbose:
         rows = [("auto", "default", "any pair: tries methods from fast to robust until one's result verifies")]
         rows += [(m.name, m.kind, m.advice) for m in methods]
@@ -220,10 +221,9 @@ def cmd_train_pca_sift(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from ..core.options import OutputOptions, RegisterOptions
     from ..core.version import __version__
+    from .options import add_options
 
-    d, o = RegisterOptions(), OutputOptions()
     p = argparse.ArgumentParser(prog="hamta", description="Automatic georeferencing and co-registration of rasters.",
                                 epilog="Exit codes: 0 success, 1 runtime error, 2 usage error, 3 unverified result, "
                                        "130 cancelled.")
@@ -242,7 +242,10 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--param", action="append", default=[], metavar="KEY=VALUE",
                    help="method parameter, repeatable (see 'hamta methods --verbose')")
     r.add_argument("--vrt", action="store_true", help="also write gcps.vrt (target + GCPs, no resampling)")
-    _add_register_options(r, d, o)
+    add_options(r)
+    r.add_argument("--accept-unverified", action="store_true",
+                    help="write the outputs even when the result is not verified (the verdict is in every output)")
+    r.add_argument("--quiet", action="store_true", help="no progress bar")
     r.add_argument("--scheduler", default=None, metavar="tls://HOST:PORT",
                    help="measure the local correction's windows on this Dask cluster (big scenes; its workers need "
                         "Hamta and the paths); tls:// takes its certificates from Dask's configuration "
@@ -261,7 +264,10 @@ def build_parser() -> argparse.ArgumentParser:
     bt.add_argument("--reference", default=None, help="the reference for targets from a folder or pattern (a raster "
                                                       "or a VRT mosaic)")
     bt.add_argument("--method", default="auto", help="matching method of every pair (a job's own overrides it)")
-    _add_register_options(bt, d, o)
+    add_options(bt)
+    bt.add_argument("--accept-unverified", action="store_true",
+                    help="write the outputs even when the result is not verified (the verdict is in every output)")
+    bt.add_argument("--quiet", action="store_true", help="no progress bar")
     bt.add_argument("--scheduler", default=None, metavar="tls://HOST:PORT",
                     help="an existing Dask scheduler (workers need Hamta installed and access to the paths); "
                          "tls:// takes its certificates from Dask's configuration (distributed.comm.tls.ca-file, "
@@ -311,87 +317,6 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-
-def _add_register_options(p, d, o) -> None:
-    """Options of a registration and its outputs, the same for 'register' and every pair of 'batch'."""
-    from ..core.options import FILL, FORMAT, GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF
-
-    p.add_argument("--model", default=None,
-                   help=f"transform model: {', '.join(MODEL.values)} (default: the method's, affine for most)")
-    p.add_argument("--resampling", default=o.resampling, choices=RESAMPLING.values,
-                   help=f"resampling of the warped output (default {o.resampling})")
-    p.add_argument("--grid", default=o.grid, choices=GRID.values,
-                   help="output pixel grid: the reference's, the target's own resolution, or auto (the reference's "
-                        f"when the resolutions are within 10 %%) (default {o.grid})")
-    p.add_argument("--resolution", type=float, default=None,
-                   help="output pixel size in output CRS units (default: from --grid)")
-    p.add_argument("--crs", default=None,
-                   help="output CRS: EPSG:code, WKT or PROJ string (default: the reference's CRS)")
-    p.add_argument("--format", default=o.format, choices=FORMAT.values,
-                   help="warped raster: gtiff (tiled, DEFLATE), cog (cloud-optimised, with overviews) or vrt (a warped "
-                        "VRT reading the target, written as registered.vrt) (default gtiff)")
-    p.add_argument("--co", action="append", default=[], metavar="KEY=VALUE",
-                   help="GDAL creation option of the warped raster, repeatable (e.g. COMPRESS=ZSTD, PREDICTOR=2)")
-    p.add_argument("--fill", default=o.fill, choices=FILL.values,
-                   help="how pixels outside the target are marked: auto (the target's nodata or collar value, NaN "
-                        "for floats, else an alpha band, so valid zeros stay valid), alpha, or nodata (default auto)")
-    p.add_argument("--nodata", type=float, default=None,
-                   help="nodata value with --fill nodata (default: the target's, else 0)")
-    p.add_argument("--max-working-pixels", type=int, default=d.max_working_pixels,
-                   help=f"pixel budget of the images matched (larger rasters are read decimated, then refined at "
-                        f"full resolution) (default {d.max_working_pixels})")
-    p.add_argument("--ransac-threshold", type=float, default=None,
-                   help="outlier threshold, working pixels (default: the method's, 3 for most)")
-    p.add_argument("--seed", type=int, default=d.seed, help=f"random seed of RANSAC and sampling (default {d.seed})")
-    p.add_argument("--refine", default=d.refine, choices=REFINE.values,
-                   help="full-resolution refinement of the matches: auto refines when an image was decimated or the "
-                        f"method asks for it (default {d.refine})")
-    p.add_argument("--max-gcps", type=int, default=d.max_gcps,
-                   help=f"most GCPs kept (well spread) for the fit and the outputs (default {d.max_gcps})")
-    p.add_argument("--target-georef", default=d.target_georef, choices=TARGET_GEOREF.values,
-                   help="use the target's own georeferencing as a starting point (auto: when it overlaps the "
-                        f"reference), or ignore it when it is wrong (default {d.target_georef})")
-    p.add_argument("--target-band", type=int, default=None,
-                   help="band of the target to match (default: luminance of RGB, else band 1)")
-    p.add_argument("--reference-band", type=int, default=None,
-                   help="band of the reference to match (default: luminance of RGB, else band 1)")
-    p.add_argument("--tolerance", type=float, default=d.tolerance_px,
-                   help=f"accuracy asked for, reference px: a result is verified only when the independent check "
-                        f"bounds its error within this (default {d.tolerance_px:g})")
-    p.add_argument("--accept-unverified", action="store_true",
-                   help="write the outputs even when the result is not verified (the verdict is in every output)")
-    p.add_argument("--pixel-mode", action="store_true",
-                   help="pixel-to-pixel registration onto a reference without georeferencing: its pixel grid stands "
-                        "in for the map and the outputs carry no CRS (without this, such a reference is refused)")
-    p.add_argument("--auto-budget", type=float, default=d.auto_budget_s,
-                   help=f"seconds 'auto' may spend: then the method running is stopped (the first, the fast path, "
-                        f"always completes) and no further one starts (default {d.auto_budget_s:g})")
-    p.add_argument("--local", action="store_true",
-                   help="after the global model, correct local (non-rigid) misalignment from shifts measured on a "
-                        "dense grid of windows; the model becomes a thin plate spline through the grid")
-    p.add_argument("--local-window", type=int, default=d.local_window_px,
-                   help="local correction window side, reference px (default 0: automatic, 64 px, or 96 px for "
-                        "methods that correlate structure across modalities)")
-    p.add_argument("--local-spacing", type=float, default=d.local_spacing_px,
-                   help="local correction grid spacing, reference px (default 0: automatic)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
-
-
-def settings_from(args):
-    """(RegisterOptions, OutputOptions) from the options :func:`_add_register_options` added."""
-    from ..core import OutputOptions, RegisterOptions
-
-    options = RegisterOptions(model=args.model, max_working_pixels=args.max_working_pixels,
-                              ransac_threshold_px=args.ransac_threshold, seed=args.seed, refine=args.refine,
-                              max_gcps=args.max_gcps, target_georef=args.target_georef,
-                              target_band=args.target_band, reference_band=args.reference_band,
-                              tolerance_px=args.tolerance, auto_budget_s=args.auto_budget, local=args.local,
-                              local_window_px=args.local_window, local_spacing_px=args.local_spacing,
-                              pixel_mode=args.pixel_mode)
-    output = OutputOptions(resampling=args.resampling, grid=args.grid, resolution=args.resolution, crs=args.crs,
-                           format=args.format, creation_options=tuple(args.co), fill=args.fill, nodata=args.nodata)
-    return options, output
-
 def main(argv: Optional[List[str]] = None) -> int:
     """Run one ``hamta`` command; returns its exit code (see ``EXIT_*``); never shows a traceback
     unless ``HAMTA_DEBUG`` is set."""
@@ -424,8 +349,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     except Exception as exc:  # a bug: say so plainly, without a traceback
         if os.environ.get("HAMTA_DEBUG"):
             raise
-        print(f"hamta: internal error ({type(exc).__name__}: {exc}). No output was published. Please report it; "
-              "HAMTA_DEBUG=1 shows the details.", file=sys.stderr)
+        what = exc if isinstance(exc, MethodCrashed) else f"internal error ({type(exc).__name__}: {exc})"
+        print(f"hamta: {what}. No output was published. Please report it; HAMTA_DEBUG=1 shows the details.",
+              file=sys.stderr)
         return EXIT_ERROR
     finally:
         if previous is not None:

@@ -9,7 +9,8 @@ from importlib import import_module
 _WHERE = {"register": "pipeline", "run": "run", "RegisterOptions": "options", "OutputOptions": "options",
           "RegistrationResult": "result", "__version__": "version", "HamtaError": "errors", "InputError": "errors",
           "NoOverlapError": "errors", "GeoreferencingError": "errors", "InsufficientMatchesError": "errors",
-          "OutputError": "errors", "RegistrationCanceled": "errors", "UnverifiedResult": "errors"}
+          "OutputError": "errors", "RegistrationCanceled": "errors", "UnverifiedResult": "errors",
+          "MethodCrashed": "errors"}
 
 __all__ = list(_WHERE)
 

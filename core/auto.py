@@ -20,13 +20,11 @@ import time
 from dataclasses import dataclass
 from typing import Callable, List, Mapping
 
-import numpy as np
-
-from .errors import DeadlineReached, HamtaError, InputError, InsufficientMatchesError, RegistrationCanceled
+from .errors import DeadlineReached, InsufficientMatchesError, method_crashes
 from .progress import Monitor
+from .verify import corroborate, corroborating, result_rank
 
 AUTO = "auto"
-VERDICT_RANK = {"verified": 2, "suspect": 1, "failed": 0}
 
 
 @dataclass(frozen=True)
@@ -57,7 +55,8 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
     ``options.auto_budget_s`` is a deadline: once spent, the running step is stopped (at its next
     progress report) and no further step starts. The first step is exempt, so that a budget shorter
     than the fast path still gives a result. Raises :class:`InsufficientMatchesError` (listing
-    every attempt) when no step produced a model.
+    every attempt) when no step produced a model. Only that error means "no model": a step raising
+    anything else but a Hamta error is a bug, and ends the run as :class:`MethodCrashed` naming it.
     """
     chain = CHAIN if chain is None else chain
     start = time.perf_counter()
@@ -75,27 +74,26 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
         step_monitor = monitor.span(i / len(chain), (i + 1) / len(chain))
         if i:
             step_monitor = step_monitor.until(start + options.auto_budget_s)
-        try:
-            result = attempt(step.method, dict(step.params), step_monitor, step.refine)
-        except (RegistrationCanceled, InputError):
-            raise
+        try:  # any other Hamta error (bad input, canceled) and a bug (MethodCrashed) end the run
+            with method_crashes(step.method):
+                result = attempt(step.method, dict(step.params), step_monitor, step.refine)
         except DeadlineReached:
             attempts.append(dict(record, outcome="stopped", reason=f"time budget of {options.auto_budget_s:g} s spent",
                                  time_s=round(time.perf_counter() - t0, 3)))
             continue
-        except (HamtaError, ValueError, ArithmeticError) as exc:
+        except InsufficientMatchesError as exc:  # the one signal of "this method found no model"
             attempts.append(dict(record, outcome="no model", reason=_first_line(exc),
                                  time_s=round(time.perf_counter() - t0, 3)))
             continue
         v = result.verification
         attempts.append(dict(record, outcome=v.verdict, reason="; ".join(v.reasons) or "verified",
                              time_s=round(time.perf_counter() - t0, 3)))
-        partner = None if v.verified else _corroborating(result, found, options.tolerance_px)
+        partner = None if v.verified else corroborating(result, found, options.tolerance_px)
         if partner is not None:
             result = corroborate(result, partner[0], partner[1])
             attempts[-1].update(outcome="verified", reason=_first_line(result.verification.corroboration["summary"]))
         found.append(result)
-        if best is None or _rank(result) > _rank(best):
+        if best is None or result_rank(result) > result_rank(best):
             best, chosen = result, len(attempts) - 1
         if result.verified:
             break
@@ -108,49 +106,6 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
         a["accepted"] = i == chosen
     timings = dict(best.timings, auto_total=round(time.perf_counter() - start, 4))
     return dataclasses.replace(best, auto={"attempts": attempts, "chosen": chosen}, timings=timings)
-
-
-def _corroborating(result, earlier, tolerance_px: float):
-    """(an earlier result of another method, their distance) when both have partial support from the
-    independent check and their models agree within ``tolerance_px``; None otherwise."""
-    if result.verification.verdict != "suspect":
-        return None
-    for other in earlier:
-        if other.method == result.method or other.verification.verdict != "suspect":
-            continue
-        d = model_distance(result, other)
-        if d is not None and d <= tolerance_px:
-            return other, d
-    return None
-
-
-def model_distance(a, b, n: int = 20):
-    """RMS distance (reference px) between two results' models over an ``n`` x ``n`` grid of target
-    points that ``a`` maps inside the reference; None when none does."""
-    t, r = a.target, a.reference
-    gx, gy = np.meshgrid((np.arange(n) + 0.5) * t.width / n, (np.arange(n) + 0.5) * t.height / n)
-    pts = np.column_stack([gx.ravel(), gy.ravel()])
-    pa = a.model.apply(pts)
-    inside = np.all(np.isfinite(pa), axis=1) & (pa[:, 0] >= 0) & (pa[:, 1] >= 0) & (pa[:, 0] <= r.width) & (
-        pa[:, 1] <= r.height)
-    if not inside.any():
-        return None
-    return float(np.sqrt(np.mean(np.sum((pa[inside] - b.model.apply(pts[inside])) ** 2, axis=1))))
-
-
-def corroborate(result, other, distance: float):
-    """``result`` verified by agreement with ``other``, an independent method's result."""
-    summary = (f"verified by agreement of independent estimates: {result.method} and {other.method} agree within "
-               f"{distance:.2f} px, each partly supported by the site check")
-    v = dataclasses.replace(result.verification, verdict="verified", reasons=(),
-                            corroboration={"method": other.method, "distance_px": distance, "summary": summary,
-                                           "own_reasons": list(result.verification.reasons)})
-    return dataclasses.replace(result, verification=v)
-
-
-def _rank(result):
-    v = result.verification
-    return VERDICT_RANK[v.verdict], v.n_agree, -(v.error_bound_px if v.error_bound_px is not None else 1e9)
 
 
 def _first_line(exc: BaseException) -> str:

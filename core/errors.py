@@ -2,7 +2,9 @@
 
 Every error a user can cause derives from :class:`HamtaError`; its message names the file and the
 problem. Front ends translate it once: the CLI prints it, Processing raises ``QgsProcessingException``.
+A bug inside a method is not one of them: it is :class:`MethodCrashed`, naming the method.
 """
+from contextlib import contextmanager
 
 
 class HamtaError(Exception):
@@ -41,6 +43,33 @@ class InsufficientMatchesError(HamtaError):
         self.found = found
         self.needed = needed
         self.correspondences = None  # what the method did return, for diagnostics
+
+
+class NoConsensusError(InsufficientMatchesError, ValueError):
+    """RANSAC had fewer correspondences than a minimal sample, or no hypothesis that enough of them
+    agree on. Also a ValueError, which RANSAC raised before this had a class of its own."""
+
+
+class MethodCrashed(Exception):
+    """A method's attempt raised something other than a :class:`HamtaError`: a bug in Hamta, not bad
+    input nor a pair too hard for the method, so it ends the run (``auto`` does not go on). Not a
+    HamtaError on purpose. ``method`` names the method; the original exception is ``__cause__``."""
+
+    def __init__(self, method: str, cause: BaseException):
+        super().__init__(f"internal error in method '{method}' ({type(cause).__name__}: {cause})")
+        self.method = method
+
+
+@contextmanager
+def method_crashes(method: str):
+    """Inside, any exception but a :class:`HamtaError` (or a KeyboardInterrupt) is re-raised as
+    :class:`MethodCrashed` naming ``method``, from the original."""
+    try:
+        yield
+    except (HamtaError, MethodCrashed):
+        raise
+    except Exception as exc:
+        raise MethodCrashed(method, exc) from exc
 
 
 class OutputError(HamtaError, OSError):

@@ -1,9 +1,14 @@
-"""Every choice a user makes about a registration and its outputs, in one place.
+"""Every choice a user makes about a registration and its outputs, declared once.
 
-Each choice is a :class:`Choice`: its allowed values with an English label each, keyed by value,
-and its default. Front ends (CLI, Processing, benchmark) build their menus from these and map
-back by value. The order of a choice's values is part of the ``qgis_process`` interface
-(Processing enums are passed as indexes), so new values are appended, never inserted.
+Each option is a field of :class:`RegisterOptions` or :class:`OutputOptions` made with
+:func:`option`: its default, a short label, a help sentence, its bounds, and whether a dialog
+shows it as basic or advanced. The front ends generate their parameters from these fields (the
+CLI's arguments in :mod:`hamta.cli.options`, the Processing parameters in
+:mod:`hamta.processing.options`) and map values back generically, so adding an option is adding
+a field. A field whose values are listed is a :class:`Choice`: its allowed values with an English
+label each, keyed by value, and its default. The order of a choice's values is part of the
+``qgis_process`` interface (Processing enums are passed as indexes), so new values are appended,
+never inserted.
 
 :func:`resolve_options` fills what a user left open with the chosen method's defaults; it is
 the only place method defaults are resolved.
@@ -11,7 +16,7 @@ the only place method defaults are resolved.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Mapping, Optional, Tuple
 
 
@@ -123,94 +128,150 @@ def canonical_model(name: str) -> str:
 
 
 @dataclass(frozen=True)
-class RegisterOptions:
-    """Settings shared by every method.
+class Option:
+    """How one option is shown and checked (the metadata of its field).
 
     Attributes
     ----------
-    model : str, optional
-        Transform model (see :data:`MODEL`); None = the method's default.
-    max_working_pixels : int
-        Pixel budget of each working image; bounds memory and matching time.
-    ransac_threshold_px : float, optional
-        Inlier tolerance in working reference pixels; None = the method's default.
-    seed : int
-        Seed of every random choice (RANSAC, in the pipeline and inside methods), for reproducible runs.
-    refine : {'auto', 'on', 'off'}
-        Full-resolution refinement; 'auto' refines when a working image was decimated or the method
-        always refines (see :class:`hamta.core.methods.Method`).
-    max_gcps : int
-        Well-spread inliers kept as GCPs; the model is fitted on exactly these.
-    min_inliers : int, optional
-        Fewest agreeing correspondences accepted as a registration (at least the model minimum + 2);
-        None = the method's default.
-    robust : {'ransac', 'none', 'triplets'}, optional
-        Outlier rejection before the fit; 'none' fits every correspondence (as some papers do);
-        'triplets' clusters the affine transforms of all match triples (spec 003's future work);
-        None = the method's default.
-    target_georef : {'auto', 'use', 'ignore'}
-        Whether the target's own georeferencing is used as a starting point.
-    target_band, reference_band : int, optional
-        1-based band to match; None = luminance of RGB images, else band 1.
-    tolerance_px : float
-        The accuracy asked for, in reference pixels: a result is verified only when the independent
-        check bounds its error within this (see :mod:`hamta.core.verify`).
-    auto_budget_s : float
-        With method 'auto', a deadline: once this many seconds are spent, the method running is
-        stopped at its next progress report (the first step always completes) and no further one starts.
-    local : bool
-        After the global model, correct local (non-rigid) misalignment from shifts measured on a
-        dense grid of windows (:mod:`hamta.core.local`); the model becomes a thin plate spline.
-    pixel_mode : bool
-        Pixel-to-pixel registration: accept a reference without georeferencing, whose pixel grid
-        then stands in for the map (outputs carry no CRS). Off by default, so a reference that lost
-        its georeferencing is reported instead of silently giving outputs no GIS can place.
-    local_window_px, local_spacing_px : int, float
-        The local correction's window side and grid spacing (reference px). Window 0 = automatic:
-        64 px where intensities are correlated, 96 px for structural descriptors (other modalities,
-        weaker evidence per pixel); measured on the nonrigid family, 64 px follows a 4 px field
-        about twice as closely as 96 px. Spacing 0 = automatic: about 2000 windows over the overlap,
-        never closer than half a window.
+    label : str
+        A few words for a dialog (at most 44 characters: longer ones make QGIS's panel scroll).
+    help : str
+        One sentence: the CLI's help and the dialog's tooltip.
+    advanced : bool
+        Shown under Advanced in dialogs (the few a user is expected to set are not).
+    choice : Choice, optional
+        The allowed values, for a field that takes one of a list.
+    minimum : float, optional
+        Smallest value of a number (exclusive with ``above``).
+    above : bool
+        The number must be above ``minimum``, not equal to it.
+    unset : str
+        What leaving a field with default None means, for the help ("the method's").
+    flag, key : str
+        The CLI flag (without '--') and the Processing parameter name, when not derived from the
+        field name (kebab case; the flag in upper case): kept as they were first published.
+    kind : str
+        'band:TARGET' or 'band:REFERENCE' (a band of that raster), 'crs' or 'list' (KEY=VALUE
+        items), for the widgets a type alone does not say; '' otherwise.
     """
 
-    model: Optional[str] = None
-    max_working_pixels: int = 4_000_000
-    ransac_threshold_px: Optional[float] = None
-    seed: int = 0
-    refine: str = REFINE.default
-    max_gcps: int = 500
-    min_inliers: Optional[int] = None
-    robust: Optional[str] = None
-    target_georef: str = TARGET_GEOREF.default
-    target_band: Optional[int] = None
-    reference_band: Optional[int] = None
-    tolerance_px: float = 3.0
-    auto_budget_s: float = 120.0
-    local: bool = False
-    local_window_px: int = 0
-    local_spacing_px: float = 0.0
-    pixel_mode: bool = False
+    label: str
+    help: str
+    advanced: bool = True
+    choice: Optional[Choice] = None
+    minimum: Optional[float] = None
+    above: bool = False
+    unset: str = ""
+    flag: str = ""
+    key: str = ""
+    kind: str = ""
+
+
+def option(default, label: str, help: str, **spec):
+    """A field of an options dataclass, with its :class:`Option` metadata."""
+    return field(default=default, metadata={"option": Option(label, help, **spec)})
+
+
+def option_fields(cls):
+    """``(field, Option)`` of every option of ``cls`` (:class:`RegisterOptions` or :class:`OutputOptions`)."""
+    return [(f, f.metadata["option"]) for f in fields(cls)]
+
+
+def cli_flag(f, spec: Option) -> str:
+    return "--" + (spec.flag or f.name.replace("_", "-"))
+
+
+def processing_key(f, spec: Option) -> str:
+    return spec.key or (spec.flag or f.name).replace("-", "_").upper()
+
+
+def check_options(options) -> None:
+    """Check every field of ``options`` against its metadata; choices are stored in canonical spelling."""
+    for f, spec in option_fields(type(options)):
+        value = getattr(options, f.name)
+        if value is None and f.default is None:
+            continue
+        if spec.choice is not None:
+            object.__setattr__(options, f.name, spec.choice.check(value))
+        elif isinstance(f.default, bool):
+            if not isinstance(value, bool):
+                raise ValueError(f"{f.name} must be true or false, got {value!r}")
+        elif f.type in ("int", "Optional[int]"):
+            _whole(f.name, value, int(spec.minimum or 0))
+        elif f.type in ("float", "Optional[float]") and spec.minimum is None:
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ValueError(f"{f.name} must be a number, got {value!r}")
+        elif f.type in ("float", "Optional[float]"):
+            _number(f.name, value, positive=spec.above)
+
+
+@dataclass(frozen=True)
+class RegisterOptions:
+    """Settings shared by every method (see each field's ``help``; ``hamta register --help`` lists them).
+
+    Pixel sizes are reference pixels unless a field says working pixels.
+    """
+
+    model: Optional[str] = option(
+        None, "Transformation", "transform model: " + ", ".join(MODEL.values), advanced=False, choice=MODEL,
+        unset="the method's, affine for most")
+    max_working_pixels: int = option(
+        4_000_000, "Working image size (pixels)", "pixel budget of the images matched (larger rasters are read "
+        "decimated, then refined at full resolution)", minimum=4096)
+    ransac_threshold_px: Optional[float] = option(
+        None, "RANSAC tolerance (working px)", "outlier threshold, working pixels", minimum=0, above=True,
+        unset="the method's, 3 for most", flag="ransac-threshold")
+    seed: int = option(0, "Random seed", "seed of every random choice (RANSAC, sampling, inside methods), for "
+                       "reproducible runs", minimum=0)
+    refine: str = option(
+        REFINE.default, "Full-resolution refinement", "full-resolution refinement of the matches: auto refines "
+        "when an image was decimated or the method asks for it", choice=REFINE)
+    max_gcps: int = option(500, "Maximum number of GCPs", "most GCPs kept (well spread) for the fit and the outputs",
+                           minimum=3)
+    min_inliers: Optional[int] = option(
+        None, "Fewest agreeing matches", "fewest agreeing correspondences accepted as a registration (at least "
+        "the model's minimum + 2)", minimum=3, unset="the method's")
+    robust: Optional[str] = option(
+        None, "Outlier rejection", "outlier rejection before the fit: ransac, none (fit every correspondence, as "
+        "some papers do) or triplets (cluster the transforms of match triplets)", choice=ROBUST,
+        unset="the method's")
+    target_georef: str = option(
+        TARGET_GEOREF.default, "Target's own georeferencing", "use the target's own georeferencing as a starting "
+        "point (auto: when it overlaps the reference), or ignore it when it is wrong", choice=TARGET_GEOREF)
+    target_band: Optional[int] = option(
+        None, "Target band to match", "band of the target to match", minimum=1,
+        unset="luminance of RGB, else band 1", kind="band:TARGET")
+    reference_band: Optional[int] = option(
+        None, "Reference band to match", "band of the reference to match", minimum=1,
+        unset="luminance of RGB, else band 1", kind="band:REFERENCE")
+    tolerance_px: float = option(
+        3.0, "Accuracy asked for (reference px)", "accuracy asked for, reference px: a result is verified only "
+        "when the independent check bounds its error within this", minimum=0, above=True, flag="tolerance")
+    auto_budget_s: float = option(
+        120.0, "Time budget of 'auto' (s)", "seconds 'auto' may spend: then the method running is stopped (the "
+        "first, the fast path, always completes) and no further one starts", minimum=0, flag="auto-budget")
+    local: bool = option(
+        False, "Local (non-rigid) correction", "after the global model, correct local (non-rigid) misalignment "
+        "from shifts measured on a dense grid of windows; the model becomes a thin plate spline through the grid",
+        advanced=False)
+    # Window 0: 64 px where intensities are correlated, 96 px for structural descriptors (weaker
+    # evidence per pixel); on the nonrigid family 64 px follows a 4 px field about twice as closely as 96 px.
+    local_window_px: int = option(
+        0, "Local window (reference px; 0: automatic)", "local correction window side, reference px (0: "
+        "automatic, 64 px, or 96 px for methods that correlate structure across modalities; otherwise at least "
+        "16)", minimum=0, flag="local-window")
+    local_spacing_px: float = option(
+        0.0, "Local grid spacing (reference px; 0: auto)", "local correction grid spacing, reference px (0: "
+        "automatic, about 2000 windows over the overlap)", minimum=0, flag="local-spacing")
+    pixel_mode: bool = option(
+        False, "Pixel-to-pixel (reference not georeferenced)", "pixel-to-pixel registration onto a reference "
+        "without georeferencing: its pixel grid stands in for the map and the outputs carry no CRS (without "
+        "this, such a reference is refused)")
 
     def __post_init__(self):
-        if self.model is not None:
-            object.__setattr__(self, "model", MODEL.check(self.model))
-        REFINE.check(self.refine)
-        TARGET_GEOREF.check(self.target_georef)
-        if self.robust is not None:
-            ROBUST.check(self.robust)
-        _whole("max_working_pixels", self.max_working_pixels, 4096)
-        _whole("seed", self.seed, 0)
-        _whole("max_gcps", self.max_gcps, 3)
-        for name in ("min_inliers", "target_band", "reference_band"):
-            if getattr(self, name) is not None:
-                _whole(name, getattr(self, name), 3 if name == "min_inliers" else 1)
-        if self.ransac_threshold_px is not None:
-            _number("ransac_threshold_px", self.ransac_threshold_px, positive=True)
-        _number("tolerance_px", self.tolerance_px, positive=True)
-        _number("auto_budget_s", self.auto_budget_s, positive=False)
+        check_options(self)
         if self.local_window_px != 0:
             _whole("local_window_px", self.local_window_px, 16)
-        _number("local_spacing_px", self.local_spacing_px, positive=False)
 
 
 def _whole(name: str, value, minimum: int) -> None:
@@ -233,47 +294,35 @@ def resolve_options(options: RegisterOptions, method) -> RegisterOptions:
 
 @dataclass(frozen=True)
 class OutputOptions:
-    """How the georeferenced raster is written.
+    """How the georeferenced raster is written (see each field's ``help``)."""
 
-    Attributes
-    ----------
-    resampling : str
-        See :data:`RESAMPLING`.
-    grid : str
-        Output pixel grid, see :data:`GRID` and :func:`hamta.core.outputs.warp.output_grid`.
-    resolution : float, optional
-        Output pixel size in output CRS units (overrides ``grid``'s).
-    crs : str, optional
-        Output CRS (EPSG code, WKT or PROJ string); the reference CRS when None.
-    format : str
-        See :data:`FORMAT`.
-    creation_options : tuple of str
-        GDAL creation options ``KEY=VALUE``, added to (and overriding) Hamta's defaults for the format.
-    fill : str
-        How pixels outside the target are marked, see :data:`FILL`; 'auto' never turns valid pixels
-        (zeros included) into nodata.
-    nodata : float, optional
-        The nodata value with ``fill='nodata'`` (default: the target's, else 0).
-    """
-
-    resampling: str = RESAMPLING.default
-    grid: str = GRID.default
-    resolution: Optional[float] = None
-    crs: Optional[str] = None
-    format: str = FORMAT.default
-    creation_options: Tuple[str, ...] = ()
-    fill: str = FILL.default
-    nodata: Optional[float] = None
+    resampling: str = option(RESAMPLING.default, "Resampling", "resampling of the warped output", advanced=False,
+                             choice=RESAMPLING)
+    grid: str = option(
+        GRID.default, "Output pixel grid", "output pixel grid: the reference's, the target's own resolution, or "
+        "auto (the reference's when the resolutions are within 10 %)", choice=GRID)
+    resolution: Optional[float] = option(
+        None, "Output pixel size (output CRS units)", "output pixel size in output CRS units (overrides the grid's)",
+        minimum=0, above=True, unset="from the pixel grid")
+    crs: Optional[str] = option(
+        None, "Output CRS (empty: the reference's)", "output CRS: EPSG:code, WKT or PROJ string",
+        unset="the reference's CRS", key="OUTPUT_CRS", kind="crs")
+    format: str = option(
+        FORMAT.default, "Output format", "warped raster: gtiff (tiled, DEFLATE), cog (cloud-optimised, with "
+        "overviews) or vrt (a warped VRT reading the target, written as registered.vrt)", choice=FORMAT)
+    creation_options: Tuple[str, ...] = option(
+        (), "GDAL creation options", "GDAL creation options of the warped raster, KEY=VALUE (e.g. COMPRESS=ZSTD, "
+        "PREDICTOR=2), added to and overriding Hamta's defaults for the format", flag="co", key="CREATION_OPTIONS",
+        kind="list")
+    fill: str = option(
+        FILL.default, "Pixels outside the target", "how pixels outside the target are marked: auto (the target's "
+        "nodata or collar value, NaN for floats, else an alpha band, so valid zeros stay valid), alpha, or nodata",
+        choice=FILL)
+    nodata: Optional[float] = option(None, "Nodata value", "nodata value with fill 'nodata'",
+                                     unset="the target's, else 0")
 
     def __post_init__(self):
-        RESAMPLING.check(self.resampling)
-        GRID.check(self.grid)
-        object.__setattr__(self, "format", FORMAT.check(self.format))
-        FILL.check(self.fill)
-        if self.resolution is not None:
-            _number("resolution", self.resolution, positive=True)
-        if self.nodata is not None and (isinstance(self.nodata, bool) or not isinstance(self.nodata, (int, float))):
-            raise ValueError(f"nodata must be a number, got {self.nodata!r}")
+        check_options(self)
         object.__setattr__(self, "creation_options", tuple(self.creation_options))
         for item in self.creation_options:
             if "=" not in item or not item.split("=", 1)[0].strip():

@@ -15,7 +15,7 @@ from typing import Optional, Tuple
 
 from .auto import AUTO, register_auto
 from .coords import pixel_to_map
-from .errors import ReferenceNotGeoreferenced
+from .errors import ReferenceNotGeoreferenced, method_crashes
 from .estimation.framed import CrsFrame
 from .estimation.robust import RobustRules, final_fit, robust_linear
 from .io.raster import RasterInfo, check_on_earth, open_raster, resolve_bands
@@ -62,6 +62,9 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
     ------
     HamtaError
         Subclasses name the file and the problem (missing input, no overlap, too few matches...).
+    MethodCrashed
+        Anything else raised while a method matched, fitted or verified: a bug, naming the method
+        (the original exception is its ``__cause__``).
     """
     monitor = Monitor(progress, is_canceled)
     inputs = read_inputs(target, reference, options, monitor.span(0.0, 0.1))
@@ -74,7 +77,9 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
             return match_and_fit(inputs, name, p, step_options, mon, map_chunks)
 
         return register_auto(attempt, options, rest)
-    return match_and_fit(inputs, method, params, options, rest, map_chunks)
+    params = get_method(method).make_params(params)  # a wrong name or parameter is the caller's, not a crash
+    with method_crashes(method):
+        return match_and_fit(inputs, method, params, options, rest, map_chunks)
 
 
 @dataclass(frozen=True, eq=False)

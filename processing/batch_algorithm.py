@@ -18,7 +18,7 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QCoreApplication
 
-from ..core import OutputOptions, RegisterOptions
+from ..core import RegisterOptions
 from ..core.auto import AUTO
 from ..core.batch import read_jobs, run_batch
 from ..core.batch.jobs import jobs_for_targets
@@ -27,21 +27,22 @@ from ..core.batch.table import write_results
 from ..core.batch.task import BatchSettings
 from ..core.errors import HamtaError
 from ..core.methods import all_methods
-from ..core.options import MODEL
 from .help import help_url
-from .register_algorithm import PlainNumbers, advanced, enum_parameter, feedback_progress
+from .mapping import register_settings
+from .options import advanced, option_parameters, option_values
+from .register_algorithm import PlainNumbers, feedback_progress
 
 _CONTEXT = "BatchRegisterAlgorithm"
 
 
 def batch_methods():
-    """The methods offered, in menu order: auto, then the product methods, then the rest."""
-    return [AUTO] + [m.name for m in sorted(all_methods().values(), key=lambda m: (m.menu_rank, m.name))]
+    """The methods offered: auto, then every method in the registry's order."""
+    return [AUTO, *all_methods()]
 
 
 class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
     JOBS, TARGETS, REFERENCE, OUTPUT_FOLDER = "JOBS", "TARGETS", "REFERENCE", "OUTPUT_FOLDER"
-    METHOD, MODEL, LOCAL, TOLERANCE, KEEP_UNVERIFIED = "METHOD", "MODEL", "LOCAL", "TOLERANCE", "KEEP_UNVERIFIED"
+    METHOD, KEEP_UNVERIFIED = "METHOD", "KEEP_UNVERIFIED"
     SCHEDULER, WORKERS, RESULTS = "SCHEDULER", "WORKERS", "RESULTS"
 
     def tr(self, text):
@@ -88,13 +89,10 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         self.addParameter(jobs)
         self.addParameter(QgsProcessingParameterEnum(self.METHOD, self.tr("Method"), options=batch_methods(),
                                                      defaultValue=0))
-        self.addParameter(enum_parameter(self.MODEL, self.tr("Transformation"), "affine"))
-        self.addParameter(QgsProcessingParameterBoolean(self.LOCAL, self.tr("Local (non-rigid) correction"), False))
         self.addParameter(QgsProcessingParameterBoolean(
             self.KEEP_UNVERIFIED, self.tr("Keep unverified results"), False))
-        self.addParameter(advanced(QgsProcessingParameterNumber(
-            self.TOLERANCE, self.tr("Accuracy asked for (reference pixels)"), QgsProcessingParameterNumber.Double,
-            RegisterOptions().tolerance_px, minValue=0.01)))
+        for p in option_parameters(RegisterOptions(model="affine"), bands=False):
+            self.addParameter(p)
         scheduler = QgsProcessingParameterString(self.SCHEDULER, self.tr("Dask scheduler (tls://host:port)"), "",
                                                  optional=True)
         scheduler.setHelp(self.tr("Dask scheduler (tls://host:port; empty: a local cluster)"))
@@ -120,11 +118,9 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
 
     def processAlgorithm(self, parameters, context, feedback):
         out = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)
-        options = RegisterOptions(model=MODEL.at(self.parameterAsEnum(parameters, self.MODEL, context)),
-                                  local=self.parameterAsBoolean(parameters, self.LOCAL, context),
-                                  tolerance_px=self.parameterAsDouble(parameters, self.TOLERANCE, context))
+        options, _, output = register_settings(option_values(self, parameters, context))
         settings = BatchSettings(method=batch_methods()[self.parameterAsEnum(parameters, self.METHOD, context)],
-                                 options=options, output=OutputOptions(),
+                                 options=options, output=output,
                                  accept_unverified=self.parameterAsBoolean(parameters, self.KEEP_UNVERIFIED, context))
         scheduler = self.parameterAsString(parameters, self.SCHEDULER, context).strip() or None
         workers = self.parameterAsInt(parameters, self.WORKERS, context) or None

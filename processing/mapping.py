@@ -1,7 +1,7 @@
 """Pure mapping from Processing parameter values to core settings (no QGIS import, unit-tested).
 
-Enum parameters are built from :mod:`hamta.core.options` choices and mapped back with the same
-choice, so an enum index always means the value it was shown for.
+Option parameters are generated from :mod:`hamta.core.options` and mapped back by the same
+definitions, so an enum index always means the value it was shown for.
 """
 from __future__ import annotations
 
@@ -9,12 +9,8 @@ import dataclasses
 import re
 from typing import Any, Dict, Mapping, Tuple
 
-from ..core.options import FILL, FORMAT, GRID, MODEL, REFINE, RESAMPLING, TARGET_GEOREF, OutputOptions, RegisterOptions
+from ..core.options import OutputOptions, RegisterOptions, option_fields, processing_key
 from ..core.outputs import OutputPaths
-
-# Processing parameter name -> the choice its enum shows.
-ENUMS = {"MODEL": MODEL, "RESAMPLING": RESAMPLING, "GRID": GRID, "REFINE": REFINE, "TARGET_GEOREF": TARGET_GEOREF,
-         "FORMAT": FORMAT, "FILL": FILL}
 
 
 def method_parameter_name(field_name: str) -> str:
@@ -34,48 +30,37 @@ def method_values(method, values: Mapping[str, Any]) -> Dict[str, Any]:
     return out
 
 
-def _enum(values: Mapping[str, Any], name: str) -> str:
-    """The choice value of enum parameter ``name`` (its default when absent)."""
-    index = values.get(name)
-    return ENUMS[name].default if index is None else ENUMS[name].at(index)
+def _option(f, spec, value):
+    """The core value of one option from its Processing value (None: the option's default)."""
+    if value is None or value == "":
+        return f.default
+    if spec.choice is not None:
+        return spec.choice.at(value) if isinstance(value, int) else spec.choice.check(value)
+    if spec.kind.startswith("band:"):
+        return int(value) or None  # 0: no band chosen
+    if spec.kind == "list":
+        return creation_options(value)
+    if isinstance(f.default, bool):
+        return bool(value)
+    return value
 
 
 def register_settings(values: Mapping[str, Any]):
-    """(RegisterOptions, OutputPaths, OutputOptions) from plain parameter values.
+    """(RegisterOptions, OutputPaths, OutputOptions) from plain parameter values keyed by Processing name.
 
-    ``values`` holds Python values already parsed by the algorithm: enum indexes, ints, floats,
-    bands as 1-based ints (0 = automatic). The model's enum always carries a value (its default
-    is the method's default model, see the algorithm); other settings left empty take the
-    method's defaults in :func:`hamta.core.options.resolve_options`.
+    ``values`` holds Python values already parsed by the algorithm (see
+    :func:`hamta.processing.options.option_values`): enum indexes, ints, floats, bands as 1-based ints
+    (0 = automatic), None for what was left empty, which takes the option's default; settings left open
+    take the method's defaults in :func:`hamta.core.options.resolve_options`.
     """
-    d = RegisterOptions()
-    options = RegisterOptions(
-        model=_enum(values, "MODEL") if values.get("MODEL") is not None else None,
-        max_working_pixels=int(values.get("MAX_WORKING_PIXELS") or d.max_working_pixels),
-        ransac_threshold_px=float(values["RANSAC_THRESHOLD"]) if values.get("RANSAC_THRESHOLD") else None,
-        seed=int(values.get("SEED") or 0),
-        refine=_enum(values, "REFINE"),
-        max_gcps=int(values.get("MAX_GCPS") or d.max_gcps),
-        target_georef=_enum(values, "TARGET_GEOREF"),
-        target_band=values.get("TARGET_BAND") or None,
-        reference_band=values.get("REFERENCE_BAND") or None,
-        tolerance_px=float(values.get("TOLERANCE") or d.tolerance_px),
-        local=bool(values.get("LOCAL")),
-        local_window_px=int(values.get("LOCAL_WINDOW") or 0),
-        local_spacing_px=float(values.get("LOCAL_SPACING") or 0.0),
-        pixel_mode=bool(values.get("PIXEL_MODE")),
-    )
+    def build(cls):
+        return cls(**{f.name: _option(f, spec, values.get(processing_key(f, spec))) for f, spec in option_fields(cls)})
+
     gpkg, layer = vector_destination(values.get("GCP_LAYER") or "")
     paths = OutputPaths(raster=values.get("OUTPUT") or None, points=values.get("GCP_POINTS") or None,
                         gpkg=gpkg or None, gpkg_layer=layer, vrt=values.get("GCP_VRT") or None,
                         report=values.get("REPORT") or None, html=values.get("OUTPUT_HTML") or None)
-    output = OutputOptions(resampling=_enum(values, "RESAMPLING"), grid=_enum(values, "GRID"),
-                           resolution=float(values["RESOLUTION"]) if values.get("RESOLUTION") else None,
-                           crs=values.get("OUTPUT_CRS") or None, format=_enum(values, "FORMAT"),
-                           creation_options=creation_options(values.get("CREATION_OPTIONS") or ""),
-                           fill=_enum(values, "FILL"),
-                           nodata=float(values["NODATA"]) if values.get("NODATA") is not None else None)
-    return options, paths, output
+    return build(RegisterOptions), paths, build(OutputOptions)
 
 
 def creation_options(text: str) -> Tuple[str, ...]:

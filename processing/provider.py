@@ -17,6 +17,8 @@ from qgis.core import QgsProcessingAlgorithm, QgsProcessingException, QgsProcess
 from qgis.PyQt.QtCore import QCoreApplication
 from qgis.PyQt.QtGui import QIcon
 
+from .catalogue import algorithm_entries
+
 ROOT = os.path.dirname(os.path.dirname(__file__))
 ICON = os.path.join(ROOT, "icon.svg")
 
@@ -39,20 +41,6 @@ REQUIREMENTS = (
 
 DEBIAN_COMMAND = "sudo apt install python3-opencv python3-rasterio python3-scipy python3-pyproj python3-shapely"
 OPENCV_PIP = '"opencv-python-headless<4.11"'  # 4.11+ pulls numpy 2 in, breaking modules built on numpy 1
-
-# The algorithms of processing/register_algorithm.py (name, display name), listed without importing
-# it; tests/qgis/test_package.py checks that the two agree.
-ALGORITHMS = (
-    ("registerauto", "Register raster (automatic)"),
-    ("registersift", "Register raster (SIFT baseline)"),
-    ("registerrilbp", "Register satellite image (RILBP, rotation-invariant)"),
-    ("registersibrif", "Register aerial image onto satellite image (SIBRIF, fast)"),
-    ("registerndsift", "Register SAR image onto SAR image (ND-SIFT + phase congruency)"),
-    ("registersaroptical", "Register SAR image onto optical image"),
-    ("registercrossmodal", "Register across modalities at any rotation and scale"),
-    ("batchregister", "Batch register"),
-)
-
 
 def missing_requirements() -> List[Tuple[Requirement, str]]:
     """``(requirement, error)`` for every required package QGIS's Python cannot import."""
@@ -182,18 +170,18 @@ class HamtaProvider(QgsProcessingProvider):
         else:
             self.unavailable_reason, self.unavailable = "", None
             try:  # the engine is imported here, once its requirements are known to import
-                from . import register_algorithm as algorithms
+                from ..core.methods import all_methods
                 from .batch_algorithm import BatchRegisterAlgorithm
+                from .register_algorithm import AUTO, RegisterAlgorithm
             except Exception as exc:  # never a traceback at plugin load: the algorithms say what failed
                 self.unavailable_reason, self.unavailable = "engine failed to load", engine_error_message(exc)
         if self.unavailable is not None:
-            for name, display_name in ALGORITHMS:
-                self.addAlgorithm(UnavailableAlgorithm(name, display_name, self.unavailable_reason, self.unavailable))
+            for entry in algorithm_entries():
+                self.addAlgorithm(UnavailableAlgorithm(entry.id, entry.title, self.unavailable_reason,
+                                                       self.unavailable))
             return
-        for alg in (algorithms.RegisterAutoAlgorithm(), algorithms.RegisterSiftAlgorithm(),
-                    algorithms.RegisterRilbpAlgorithm(), algorithms.RegisterSibrifAlgorithm(),
-                    algorithms.RegisterNdsiftAlgorithm(), algorithms.RegisterSarOpticalAlgorithm(),
-                    algorithms.RegisterCrossModalAlgorithm(), BatchRegisterAlgorithm()):
+        methods = [name for name, method in all_methods().items() if method.toolbox is not None]
+        for alg in [RegisterAlgorithm(AUTO), *map(RegisterAlgorithm, methods), BatchRegisterAlgorithm()]:
             self.addAlgorithm(alg)
 
     def supportedOutputRasterLayerExtensions(self):

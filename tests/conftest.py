@@ -69,3 +69,80 @@ def demo_pair(tmp_path_factory):
     from hamta.bench.sample import make_demo_pair
 
     return make_demo_pair(str(tmp_path_factory.mktemp("demo") / "sample"))
+
+
+def option_samples():
+    """``(field, Option, value)`` for every registration and output option, ``value`` valid and not its
+    default: what the tests that reach every option from each front end set."""
+    from hamta.core.options import OutputOptions, RegisterOptions, option_fields
+
+    samples = []
+    for cls in (RegisterOptions, OutputOptions):
+        for f, spec in option_fields(cls):
+            if spec.choice is not None:
+                value = spec.choice.values[-1] if spec.choice.values[-1] != f.default else spec.choice.values[0]
+            elif spec.kind == "crs":
+                value = "EPSG:4326"
+            elif spec.kind == "list":
+                value = ("COMPRESS=LZW",)
+            elif isinstance(f.default, bool):
+                value = not f.default
+            elif spec.kind.startswith("band:"):
+                value = 2
+            elif f.type in ("int", "Optional[int]"):
+                value = max(f.default or 0, int(spec.minimum or 0)) + 17
+            else:
+                value = (f.default or 0.0) + 1.5
+            samples.append((f, spec, value))
+    return samples
+
+
+NEW_METHOD = '''
+"""A method defined by a test: one module, nothing else edited."""
+from hamta.core.methods.registry import Method, Toolbox, match_with, register_method
+from hamta.core.methods.sift import SiftParams, sift_image_features
+
+METHOD = register_method(Method(
+    name="testmethod", title="A method added by a test", summary="SIFT under another name.", citation="a test",
+    params_type=SiftParams, match=match_with(sift_image_features), use_when="never (a test)",
+    toolbox=Toolbox("registertestmethod", "Test method")))
+'''
+
+
+@pytest.fixture
+def new_method_module(tmp_path, monkeypatch):
+    """A method module written by the test into a folder added to the method package's path; removed after."""
+    import sys
+
+    import hamta.core.methods as package
+    from hamta.core.methods import registry
+
+    (tmp_path / "testmethod.py").write_text(NEW_METHOD)
+    monkeypatch.setattr(package, "__path__", [*package.__path__, str(tmp_path)])
+    yield "testmethod"
+    registry._REGISTRY.pop("testmethod", None)
+    sys.modules.pop("hamta.core.methods.testmethod", None)
+
+
+@pytest.fixture
+def raising_method():
+    """``make(exc)`` registers a method whose matching raises ``exc`` under a name of its own and
+    returns the name; the methods are unregistered after the test."""
+    from hamta.core.methods import register_method
+    from hamta.core.methods.registry import _REGISTRY, Method
+    from hamta.core.methods.sift import SiftParams
+
+    names = []
+
+    def make(exc):
+        def match(target, reference, params, monitor, seed=0):
+            raise exc
+
+        names.append(f"test-raises-{type(exc).__name__.lower()}-{len(names)}")
+        register_method(Method(name=names[-1], title="Raises", summary="A method that raises (a test).",
+                               citation="a test", params_type=SiftParams, match=match))
+        return names[-1]
+
+    yield make
+    for name in names:
+        _REGISTRY.pop(name, None)

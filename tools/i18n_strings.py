@@ -1,20 +1,24 @@
-"""Print the user-visible strings that live in ``hamta.core`` (option labels, method parameter help)
-as ``QT_TRANSLATE_NOOP`` calls, so that ``pylupdate5`` (run by ``make i18n``) collects them into the
-.ts files: Processing shows them through ``QCoreApplication.translate('RegisterAlgorithm', text)``."""
+"""Print the user-visible strings that live in ``hamta.core`` (option labels, help and choice labels,
+method parameter help, the Toolbox methods' titles and help) as ``QT_TRANSLATE_NOOP`` calls, so that
+``pylupdate5`` (run by ``make i18n``) collects them into the .ts files: Processing shows them through
+``QCoreApplication.translate('RegisterAlgorithm', text)``."""
 import dataclasses
 
-from hamta.core import options
 from hamta.core.methods import all_methods
+from hamta.core.options import OutputOptions, RegisterOptions, option_fields
 
 CONTEXT = "RegisterAlgorithm"
 
 
 def strings():
     seen = []
-    for choice in (options.MODEL, options.RESAMPLING, options.GRID, options.REFINE, options.TARGET_GEOREF,
-                   options.FORMAT, options.FILL):
-        seen.extend(choice.labels.values())
+    for cls in (RegisterOptions, OutputOptions):
+        for _, spec in option_fields(cls):
+            seen += [spec.label, spec.help] + ([spec.unset] if spec.unset else [])
+            seen += list(spec.choice.labels.values()) if spec.choice else []
     for method in all_methods().values():
+        if method.toolbox is not None:
+            seen += [method.toolbox.title, method.summary]
         seen.extend(f.metadata.get("help", f.name) for f in dataclasses.fields(method.params_type))
     return list(dict.fromkeys(seen))
 

@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 from typing import Optional
 
 from ..coords import raster_outline
-from ..errors import HamtaError, UnverifiedResult
+from ..errors import HamtaError, MethodCrashed, UnverifiedResult
 from ..options import OutputOptions, RegisterOptions
 from .jobs import Job
 
@@ -56,7 +56,7 @@ def register_job(job: Job, settings: BatchSettings) -> dict:
             accept_unverified=settings.accept_unverified, map_chunks=_cluster_map() if settings.spread_local else None)
     except UnverifiedResult:
         pass  # its report says why; the record reads it
-    except (HamtaError, ValueError, ArithmeticError, MemoryError) as exc:
+    except (HamtaError, MethodCrashed, ValueError, ArithmeticError, MemoryError) as exc:  # this pair fails
         lines = str(exc).strip().splitlines() or [type(exc).__name__]
         return failed_record(job, method, time.perf_counter() - t0, lines[0])
     return from_report(job, method, time.perf_counter() - t0)

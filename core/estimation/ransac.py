@@ -17,6 +17,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from ..coords import apply_matrix, as_xy
+from ..errors import NoConsensusError
 from .models import MIN_POINTS, LinearModel
 
 RANSAC_KINDS = ("similarity", "affine", "projective")
@@ -108,14 +109,15 @@ def ransac(src, dst, kind: str, *, threshold_px: float, max_trials: int = 5000,
     model : LinearModel
         Least-squares fit on the final inliers.
     inliers : (N,) bool
-        Raises ``ValueError`` when no hypothesis reaches the minimal inlier count.
+        Raises :class:`NoConsensusError` (a ValueError too) when there are fewer points than a
+        minimal sample or no hypothesis reaches the minimal inlier count.
     """
     if kind not in RANSAC_KINDS:
         raise ValueError(f"RANSAC supports {RANSAC_KINDS}, not {kind!r}")
     src0, dst0 = as_xy(src), as_xy(dst)
     n, m = len(src0), MIN_POINTS[kind]
     if n < m:
-        raise ValueError(f"{kind} RANSAC needs at least {m} correspondences, got {n}")
+        raise NoConsensusError(f"{kind} RANSAC needs at least {m} correspondences, got {n}", n, m)
     rng = np.random.default_rng(rng)
     # Isotropic normalisation keeps the minimal solves well conditioned for any pixel range and
     # maps each model class onto itself.
@@ -142,7 +144,8 @@ def ransac(src, dst, kind: str, *, threshold_px: float, max_trials: int = 5000,
             w = best_inliers.mean()
             needed = _trials_needed(w, m, confidence)
     if best_inliers is None or best_inliers.sum() < m:
-        raise ValueError(f"no {kind} hypothesis gathered {m} inliers within {threshold_px:g} px")
+        found = 0 if best_inliers is None else int(best_inliers.sum())
+        raise NoConsensusError(f"no {kind} hypothesis gathered {m} inliers within {threshold_px:g} px", found, m)
     return polish(src0, dst0, kind, best_inliers, threshold_px)
 
 
@@ -150,7 +153,7 @@ def ransac_or_none(src, dst, kind: str, *, threshold_px: float, rng=0, **kwargs)
     """:func:`ransac`, or (None, no inliers) where no hypothesis gathers a minimal sample."""
     try:
         return ransac(src, dst, kind, threshold_px=threshold_px, rng=rng, **kwargs)
-    except ValueError:
+    except NoConsensusError:  # only that: a bug inside is not "no model"
         return None, np.zeros(len(src), bool)
 
 

@@ -32,9 +32,8 @@ from ..preprocess.sar import SAR_UNITS
 from ..progress import Monitor
 from ..refine import STRUCTURAL_REFINEMENT
 from ..types import Matches
-from .lines_spectral import CITATION as THESIS
 from .lines_spectral import LinesParams, match_lines, sar_image
-from .registry import Method, param, register_method, validate
+from .registry import Method, Toolbox, param, register_method, validate
 
 
 @dataclass(frozen=True)
@@ -153,9 +152,19 @@ def match(target, reference, params: CfogParams, monitor: Monitor, seed: int = 0
 
 METHOD = register_method(Method(
     name="cfog", title="Across modalities: structural search + dense CFOG (SAR, infrared, maps onto optical)",
-    summary="Exhaustive rotation/scale/shift search on CFOG structural descriptors, then CFOG template matching "
-            "on a grid, RANSAC and the chosen model. For SAR targets on optical references and other "
-            "modality pairs (contrast inversion included). The thesis's line matcher is coarse='lines'.",
-    citation="Ye et al. 2019, IEEE TGRS 57(11):9059-9070 (CFOG); " + THESIS, params_type=CfogParams,
+    summary="Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and "
+            "contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale "
+            "(up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to "
+            "the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen "
+            "transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same "
+            "similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method "
+            "'lines-spectral-faithful' is the thesis's line-intersection matcher as written (Radon lines, "
+            "eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to "
+            "register.",
+    citation="S. Gholami (2018), Automatic registration of SAR images onto optical images, M.Sc. thesis, Shahrood "
+             "University of Technology; Y. Ye, L. Bruzzone, J. Shan, F. Bovolo and Q. Zhu (2019), Fast and robust "
+             "matching for multimodal remote sensing image registration, IEEE Transactions on Geoscience and "
+             "Remote Sensing 57(11):9059-9070, doi:10.1109/TGRS.2019.2924684", params_type=CfogParams,
     match=match, refinement=STRUCTURAL_REFINEMENT,
-    use_when="SAR, infrared or a map onto an optical image that is roughly north-up"), aliases=("lines-spectral",))
+    use_when="SAR, infrared or a map onto an optical image that is roughly north-up",
+    toolbox=Toolbox("registersaroptical", "Register SAR image onto optical image")), aliases=("lines-spectral",))

@@ -34,7 +34,7 @@ from ..preprocess.sar import SAR_UNITS, log_scaled, normalised_amplitude
 from ..progress import Monitor
 from ..refine import RefineParams
 from ..types import Features, Keypoints, Matches
-from .registry import Method, param, register_method, validate
+from .registry import Method, Toolbox, param, register_method, validate
 
 CITATION = ("Fan et al. 2015, SAR image registration using phase congruency and nonlinear diffusion-based SIFT, "
             "IEEE GRSL 12(3):562-566, doi:10.1109/LGRS.2014.2351396 (spec 002)")
@@ -244,10 +244,20 @@ _SUMMARY = ("Nonlinear diffusion scale space (ROEWA conductance, AOS) with SIFT,
 
 METHOD = register_method(Method(
     name="ndsift-pc", title="ND-SIFT + phase congruency (SAR)",
-    summary=_SUMMARY + " Product: pre-smoothing, one-way ratio test, RANSAC, then correlation refinement on a grid.",
-    citation=CITATION, params_type=ProductParams, match=match, default_model="similarity", refine="always",
+    summary="Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a "
+            "nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT "
+            "keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, "
+            "ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set "
+            "what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product "
+            "defaults pre-smooth and use a one-way ratio test; the CLI method 'ndsift-pc-faithful' is the paper as "
+            "written.",
+    citation="J. Fan, Y. Wu, F. Wang, Q. Zhang, G. Liao and M. Li (2015), SAR image registration using phase "
+             "congruency and nonlinear diffusion-based SIFT, IEEE Geoscience and Remote Sensing Letters "
+             "12(3):562-566, doi:10.1109/LGRS.2014.2351396",
+    params_type=ProductParams, match=match, default_model="similarity", refine="always",
     refinement=SAR_REFINEMENT,
-    use_when="SAR onto SAR (another date, band or polarisation), any rotation"))
+    use_when="SAR onto SAR (another date, band or polarisation), any rotation",
+    toolbox=Toolbox("registerndsift", "Register SAR image onto SAR image (ND-SIFT + phase congruency)")))
 
 FAITHFUL = register_method(Method(
     name="ndsift-pc-faithful", title="ND-SIFT + phase congruency, as published",

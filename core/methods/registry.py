@@ -17,6 +17,16 @@ from ..types import Matches
 
 
 @dataclass(frozen=True)
+class Toolbox:
+    """A method's own algorithm in the QGIS Processing Toolbox: ``qgis_process run hamta:<id>``, shown
+    as ``title``; its help is the method's summary and citation. Both stay as first published (the
+    id is in users' scripts and models; the title in the Toolbox's search)."""
+
+    id: str
+    title: str
+
+
+@dataclass(frozen=True)
 class Method:
     """A registered matching method.
 
@@ -53,6 +63,9 @@ class Method:
     use_when : str
         When a user should choose it (one short line for ``hamta methods``); faithful versions and
         baselines say what they are for when left empty.
+    toolbox : Toolbox, optional
+        Its algorithm in the QGIS Processing Toolbox, for the methods users choose there (the others
+        are reached through the CLI, the batch and ``auto``).
     """
 
     name: str
@@ -69,11 +82,13 @@ class Method:
     refine: str = "when-decimated"
     refinement: RefineParams = RefineParams()
     use_when: str = ""
+    toolbox: Optional[Toolbox] = None
 
     @property
-    def menu_rank(self) -> int:
-        """Place of its kind in menus: product methods, then baselines, then faithful versions."""
-        return {"method": 0, "baseline": 1, "faithful": 2}.get(self.kind, 3)
+    def menu_key(self):
+        """Its place in every list of methods: the fast path (SIFT) first, the product methods, then
+        baselines, then faithful versions, each kind by name."""
+        return self.name != "sift", {"method": 0, "baseline": 1, "faithful": 2}.get(self.kind, 3), self.name
 
     @property
     def advice(self) -> str:

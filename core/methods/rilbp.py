@@ -26,7 +26,7 @@ from ..detectors.patches import sample_patches
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import stretch_to_uint8
 from ..types import Features
-from .registry import Method, match_with, param, register_method, validate
+from .registry import Method, Toolbox, match_with, param, register_method, validate
 
 CITATION = ("Sedaghat & Mohammadi 2019, Rotation invariant local binary pattern descriptor for remote sensing "
             "image matching, JGIT 7(2):223-239 (spec 000); CenSurE: Agrawal et al. 2008, ECCV")
@@ -101,11 +101,18 @@ def rilbp_features(img, params: RilbpMethodParams) -> Features:
 METHOD = register_method(Method(
     name="rilbp",
     title="RILBP + CenSurE (rotation-invariant, satellite)",
-    summary="CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, "
-            "intensity-order sub-regions, CS-LBP in each pixel's radial frame); no orientation step. "
-            "For optical satellite images with any rotation.",
-    citation=CITATION, params_type=RilbpMethodParams, match=match_with(rilbp_features),
-    use_when="satellite images with strong rotation and illumination change"))
+    summary="Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon "
+            "keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, "
+            "centre-symmetric LBP in each pixel's radial frame; no orientation step), mutual ratio-test matching, "
+            "seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add "
+            "sub-pixel keypoints and smoothed, radius-2 codes; the CLI method 'rilbp-faithful' is the paper as "
+            "written.",
+    citation="A. Sedaghat and N. Mohammadi (2019), Rotation invariant local binary pattern descriptor for remote "
+             "sensing image matching, Journal of Geospatial Information Technology 7(2):223-239; M. Agrawal, K. "
+             "Konolige and M. R. Blas (2008), CenSurE, ECCV.",
+    params_type=RilbpMethodParams, match=match_with(rilbp_features),
+    use_when="satellite images with strong rotation and illumination change",
+    toolbox=Toolbox("registerrilbp", "Register satellite image (RILBP, rotation-invariant)")))
 
 FAITHFUL = register_method(Method(
     name="rilbp-faithful",

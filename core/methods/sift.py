@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from ..descriptors.sift import SiftDetector, sift_features
 from ..matching.nearest import CROSS_CHECKS
 from ..preprocess.normalize import detection_mask, stretch_to_uint8
-from .registry import Method, match_with, param, register_method, validate
+from .registry import Method, Toolbox, match_with, param, register_method, validate
 
 
 @dataclass(frozen=True)
@@ -37,10 +37,14 @@ def sift_image_features(img, params: SiftParams):
 METHOD = register_method(Method(
     name="sift",
     title="SIFT baseline (OpenCV)",
-    summary="OpenCV SIFT keypoints, Lowe ratio test with a mutual check, robust fit. The classic "
-            "default for same-sensor optical images.",
-    citation="Lowe 2004, IJCV 60(2):91-110, doi:10.1023/B:VISI.0000029664.99615.94",
+    summary="Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe's "
+            "ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen "
+            "transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer "
+            "and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.",
+    citation="D. G. Lowe (2004), Distinctive image features from scale-invariant keypoints, IJCV 60(2):91-110, "
+             "doi:10.1023/B:VISI.0000029664.99615.94",
     params_type=SiftParams,
     match=match_with(sift_image_features, "SIFT keypoints"),
     kind="baseline",
-    use_when="same sensor or similar optical images, any rotation and scale (what auto tries first)"))
+    use_when="same sensor or similar optical images, any rotation and scale (what auto tries first)",
+    toolbox=Toolbox("registersift", "Register raster (SIFT baseline)")))

@@ -42,7 +42,7 @@ from ..matching.pose_check import ShiftCorrelator, TargetPyramid, oriented_chann
 from ..progress import Monitor
 from ..refine import STRUCTURAL_REFINEMENT
 from ..types import Matches
-from .registry import Method, param, register_method, validate
+from .registry import Method, Toolbox, param, register_method, validate
 
 CITATION = ("Li, Hu & Ai 2020, IEEE TIP 29:3296 (RIFT); Li et al. 2023, arXiv:2303.00319 (RIFT2); Li, Hu & Zhang "
             "2023, ISPRS J. 204:77 (scale, data set); Ye et al. 2019, IEEE TGRS 57(11):9059 (CFOG)")
@@ -225,10 +225,16 @@ def match(target, reference, params: XmodalParams, monitor: Monitor, seed: int =
 
 METHOD = register_method(Method(
     name="xmodal", title="Across modalities at any rotation and scale (RIFT votes + CFOG check + local RIFT)",
-    summary="Rotation- and scale-invariant matching for images of different modality (optical onto SAR, "
-            "infrared, depth, maps, night lights): RIFT phase-congruency features vote for rotation and scale, "
-            "each hypothesis is checked densely with CFOG, the best are refined by local RIFT matching; "
-            "full-resolution CFOG refinement.",
-    citation=CITATION, params_type=XmodalParams, match=match, ransac_threshold_px=4.0, refine="always",
+    summary="Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web "
+            "map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency "
+            "(RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural "
+            "descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and "
+            "the result is refined at full resolution with CFOG and checked independently. Its baseline, the "
+            "published RIFT2 matcher, is the CLI method 'rift'.",
+    citation="J. Li, Q. Hu and M. Ai (2020), RIFT, IEEE Transactions on Image Processing 29:3296-3310; J. Li, Q. "
+             "Hu and Y. Zhang (2023), Multimodal image matching: a scale-invariant algorithm and an open dataset, "
+             "ISPRS Journal of Photogrammetry and Remote Sensing 204:77-88; Y. Ye et al. (2019), CFOG, IEEE TGRS "
+             "57(11):9059-9070.", params_type=XmodalParams, match=match, ransac_threshold_px=4.0, refine="always",
     refinement=STRUCTURAL_REFINEMENT,
-    use_when="different modalities at any rotation and scale 1/2-2 (SAR, infrared, depth, maps, night lights)"))
+    use_when="different modalities at any rotation and scale 1/2-2 (SAR, infrared, depth, maps, night lights)",
+    toolbox=Toolbox("registercrossmodal", "Register across modalities at any rotation and scale")))

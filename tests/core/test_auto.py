@@ -65,3 +65,35 @@ def test_the_budget_stops_a_running_method(monkeypatch):
                                                         "budget"):
         auto_module.register_auto(attempt, RegisterOptions(auto_budget_s=1.0), Monitor(), chain)
     assert ran == ["first", "slow"] and time.perf_counter() - t0 < 2.0
+
+
+@pytest.mark.parametrize("error", [ValueError("operands could not be broadcast"), ZeroDivisionError("division by zero"),
+                                   IndexError("index 3 is out of bounds")])
+def test_a_bug_in_a_method_ends_auto_naming_the_method(demo_pair, raising_method, monkeypatch, error):
+    """Errors are not outcomes: anything but a Hamta error raised inside a method is a bug; 'auto'
+    does not record it as "no model" and go on, it stops and names the method (the cause kept)."""
+    from hamta.core.errors import HamtaError, MethodCrashed
+
+    name = raising_method(error)
+    monkeypatch.setattr(auto_module, "CHAIN", (Step(name, {}, "test"), Step("sift", {}, "test")))
+    with pytest.raises(MethodCrashed, match=rf"internal error in method '{name}' \({type(error).__name__}: ") as info:
+        register(demo_pair["target"], demo_pair["reference"])
+    assert info.value.method == name and info.value.__cause__ is error and not isinstance(info.value, HamtaError)
+    with pytest.raises(MethodCrashed, match=f"method '{name}'"):  # chosen directly too
+        register(demo_pair["target"], demo_pair["reference"], name)
+
+
+def test_no_model_from_a_method_lets_auto_go_on(demo_pair, raising_method, monkeypatch):
+    name = raising_method(InsufficientMatchesError("only 2 matches", 2, 8))
+    monkeypatch.setattr(auto_module, "CHAIN", (Step(name, {}, "test"), Step("sift", {}, "test")))
+    result = register(demo_pair["target"], demo_pair["reference"])
+    first, second = result.auto["attempts"]
+    assert (first["method"], first["outcome"], first["reason"]) == (name, "no model", "only 2 matches")
+    assert result.method == "sift" and second["accepted"] and result.verified
+
+
+def test_a_wrong_method_name_or_parameter_is_the_callers_error_not_a_crash(demo_pair):
+    with pytest.raises(ValueError, match="unknown method 'nope'"):
+        register(demo_pair["target"], demo_pair["reference"], "nope")
+    with pytest.raises(ValueError, match="has no parameter"):
+        register(demo_pair["target"], demo_pair["reference"], "sift", params={"wobble": 1})

@@ -318,3 +318,14 @@ def test_only_a_verified_pair_carries_an_error_bound(tmp_path, demo_pair, monkey
     other = jobs_for_targets([demo_pair["target"]], demo_pair["reference"], str(tmp_path / "other"))[0]
     record = register_job(other, SIFT)
     assert (record["status"], record["message"], record["error_bound_px"]) == ("failed", "ValueError", None)
+
+
+def test_a_bug_in_a_method_fails_its_pair_naming_the_method(tmp_path, demo_pair, raising_method):
+    from hamta.core.batch.jobs import jobs_for_targets
+    from hamta.core.batch.task import register_job
+
+    name = raising_method(ZeroDivisionError("division by zero"))
+    job = jobs_for_targets([demo_pair["target"]], demo_pair["reference"], str(tmp_path / "out"))[0]
+    record = register_job(job, BatchSettings(method=name))
+    assert record["status"] == "failed"
+    assert record["message"] == f"internal error in method '{name}' (ZeroDivisionError: division by zero)"

@@ -73,3 +73,27 @@ def test_default_data_folder_is_beside_the_repository(shared, monkeypatch):
 
     monkeypatch.delenv("HAMTA_SHARED_DATA", raising=False)
     assert os.path.samefile(default_data_dir(), shared / "data")
+
+
+def test_a_bug_in_a_method_is_a_crash_not_a_failure():
+    import re
+    from types import SimpleNamespace
+
+    from hamta.bench.metrics import judge
+    from hamta.bench.tables import text_tables
+    from hamta.core.errors import InsufficientMatchesError, MethodCrashed
+
+    crash = MethodCrashed("x", ValueError("bad shapes"))
+    no_model = InsufficientMatchesError("only 2 matches", 2, 8)
+    should_fail = SimpleNamespace(truth=None)  # nothing to find: no model is a success, a crash never is
+    assert judge(should_fail, error=no_model)["success"] and not judge(should_fail, error=no_model)["crashed"]
+    row = judge(should_fail, error=crash)
+    assert row["crashed"] and not row["success"] and row["error"].startswith("MethodCrashed: internal error in method")
+    rows = [dict(row, family="f", case=c, method=m, rmse_cp=None, time_s=1.0, peak_rss_mb=10)
+            for c in ("a", "b") for m in ("sift", "x")]
+    rows[0].update(crashed=False, success=True)
+    summary = summarise(rows, ["sift", "x"])
+    assert summary["f"]["x"]["n_crashed"] == 2 and summary["f"]["sift"]["n_crashed"] == 1
+    report = {"summary": summary, "cases": rows, "meta": {"duration_s": 1.0, "notes": []}}
+    header, _, sift, x = [re.split(r"\s{2,}", line.strip()) for line in text_tables(report).splitlines()[2:6]]
+    assert (sift[header.index("crashes")], x[header.index("crashes")]) == ("1", "2")

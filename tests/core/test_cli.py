@@ -156,3 +156,22 @@ def test_the_counts_add_up(tmp_path, demo_pair, capsys):
     words = line.split(": ", 1)[1].split()
     kept, pool = int(words[0]), int(words[4])
     assert rc == 0 and kept == report["n_gcps"] <= pool
+
+
+def test_a_bug_in_a_method_is_an_internal_error_naming_it(tmp_path, demo_pair, raising_method, monkeypatch, capsys):
+    from hamta.core import auto
+    from hamta.core.errors import MethodCrashed
+
+    name = raising_method(ValueError("operands could not be broadcast"))
+    args = ["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out",
+            str(tmp_path / "o"), "--quiet"]
+    assert main(args + ["--method", name]) == 1
+    assert f"hamta: internal error in method '{name}' (ValueError: operands could not" in capsys.readouterr().err
+    monkeypatch.setattr(auto, "CHAIN", (auto.Step(name, {}, "test"), auto.Step("sift", {}, "test")))
+    assert main(args) == 1  # 'auto' stops there: sift, which would verify, does not run
+    err = capsys.readouterr().err
+    assert f"internal error in method '{name}'" in err and "HAMTA_DEBUG=1" in err and not (tmp_path / "o").exists()
+    monkeypatch.setenv("HAMTA_DEBUG", "1")
+    with pytest.raises(MethodCrashed) as info:  # the original traceback is the cause
+        main(args + ["--method", name])
+    assert isinstance(info.value.__cause__, ValueError)

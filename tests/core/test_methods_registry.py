@@ -1,6 +1,8 @@
 """The method registry: names, aliases, parameters, and the run's seed reaching every method."""
 import dataclasses
 import inspect
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -59,13 +61,35 @@ def test_cfog_dense_fit_uses_the_seed(monkeypatch):
 
 
 def test_every_builtin_method_is_found_in_its_module():
-    """get_method imports only the module BUILTIN names; that module must define the method."""
+    """Methods are found by listing the package; get_method of a method named after its module
+    imports only that module (start-up time), and every name resolves to the module defining it."""
     import importlib
+    import pkgutil
 
-    from hamta.core.methods import BUILTIN, all_methods, method_aliases
+    import hamta.core.methods as package
+    from hamta.core.methods import all_methods, method_aliases
 
-    assert sorted(all_methods()) == sorted(n for n in BUILTIN if n not in method_aliases())
-    for name, module in BUILTIN.items():
+    modules = [i.name for i in pkgutil.iter_modules(package.__path__) if i.name != "registry"]
+    defined = {id(v): m for m in modules for v in vars(importlib.import_module(f"hamta.core.methods.{m}")).values()}
+    assert sorted(all_methods()) == sorted(n for n in all_methods() if n not in method_aliases())
+    for name in list(all_methods()) + list(method_aliases()):
         method = all_methods()[method_aliases().get(name, name)]
-        defined = vars(importlib.import_module(f"hamta.core.methods.{module}")).values()
-        assert any(v is method for v in defined), (name, module)
+        assert id(method) in defined, name
+    code = ("import sys; from hamta.core.methods import get_method; get_method('ndsift-pc-faithful'); "
+            "print(sorted(m for m in sys.modules if m.startswith('hamta.core.methods.')))")
+    out = subprocess.run([sys.executable, "-P", "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.strip() == "['hamta.core.methods.ndsift_pc', 'hamta.core.methods.registry']"
+
+
+def test_a_method_module_added_shows_in_every_front_end(new_method_module, capsys, demo_pair, tmp_path):
+    from hamta.bench.runner import default_methods
+    from hamta.cli.main import main
+
+    name = new_method_module
+    order = list(all_methods())
+    assert order.index(name) < order.index("orb")  # a product method, listed before the baselines
+    assert main(["methods"]) == 0 and name in capsys.readouterr().out
+    assert name in default_methods(quick=True)
+    code = main(["register", "--target", demo_pair["target"], "--reference", demo_pair["reference"], "--out",
+                 str(tmp_path / "o"), "--method", name, "--param", "ratio=0.75", "--quiet"])
+    assert code == 0 and f"method {name}" in capsys.readouterr().out

@@ -48,6 +48,32 @@ def test_ransac_fails_clearly_without_consensus():
         ransac(rng.random((3, 2)), rng.random((3, 2)), "projective", threshold_px=1.0)
 
 
+def test_only_no_consensus_is_no_model(monkeypatch, data):
+    """'No model' is said by its own error (a ValueError too, as before); a bug inside RANSAC is not
+    turned into 'no model' by ``ransac_or_none``."""
+    import importlib
+
+    from hamta.core.errors import NoConsensusError
+
+    module = importlib.import_module("hamta.core.estimation.ransac")  # the package's 'ransac' is the function
+
+    rng = np.random.default_rng(0)
+    with pytest.raises(NoConsensusError, match="needs at least 4") as info:
+        ransac(rng.random((3, 2)), rng.random((3, 2)), "projective", threshold_px=1.0)
+    assert (info.value.found, info.value.needed) == (3, 4)
+    with pytest.raises(NoConsensusError, match="no affine hypothesis gathered 3 inliers"):  # one place: degenerate
+        ransac(np.ones((6, 2)), rng.random((6, 2)) * 100, "affine", threshold_px=1.0)
+    assert module.ransac_or_none(rng.random((3, 2)), rng.random((3, 2)), "projective", threshold_px=1.0)[0] is None
+
+    def broken(*args, **kwargs):
+        raise ValueError("operands could not be broadcast")
+
+    monkeypatch.setattr(module, "polish", broken)
+    src = data[0]
+    with pytest.raises(ValueError, match="broadcast"):
+        module.ransac_or_none(src, src + 1.0, "affine", threshold_px=1.0)
+
+
 def test_the_gcps_hold_no_place_twice():
     from hamta.core.estimation.models import fit_model
     from hamta.core.estimation.robust import Estimate, final_fit

@@ -8,7 +8,7 @@ from qgis.PyQt import sip
 from qgis.PyQt.QtCore import QUrl
 from qgis.PyQt.QtWidgets import QDialogButtonBox, QDoubleSpinBox, QGroupBox, QScrollArea
 
-from hamta.processing.provider import ALGORITHMS
+from hamta.processing.catalogue import algorithm_entries
 
 
 @pytest.fixture
@@ -28,7 +28,7 @@ def dialog(provider, request):
     dlg.close()
 
 
-@pytest.mark.parametrize("dialog", [name for name, _ in ALGORITHMS], indirect=True)
+@pytest.mark.parametrize("dialog", [e.id for e in algorithm_entries()], indirect=True)
 def test_the_dialog_fits_has_help_and_plain_defaults(dialog):
     panels = [area for area in dialog.findChildren(QScrollArea) if area.isVisible()]
     assert panels and all(area.horizontalScrollBar().maximum() == 0 for area in panels), "a panel scrolls sideways"

@@ -188,9 +188,10 @@ def test_message_for_missing_packages_names_them_and_how_to_install():
 
 
 def test_unavailable_stand_ins_match_the_real_algorithms(provider):
-    from hamta.processing.provider import ALGORITHMS
+    from hamta.processing.catalogue import algorithm_entries
 
-    assert sorted(ALGORITHMS) == sorted((a.name(), a.displayName()) for a in provider.algorithms())
+    listed = sorted((e.id, e.title) for e in algorithm_entries())
+    assert listed == sorted((a.name(), a.displayName()) for a in provider.algorithms())
     assert provider.unavailable is None and provider.warningMessage() == ""
 
 

@@ -244,3 +244,55 @@ def test_a_reference_without_georeferencing_needs_the_pixel_mode_box(provider, d
     result = _run(dict(params, PIXEL_MODE=True), feedback)
     assert result["VERDICT"] == "verified" and any("pixel-to-pixel" in w for w in warnings)
     assert QgsRasterLayer(result["OUTPUT"], "o").crs().isValid() is False
+
+
+def _processing_value(spec, value):
+    if spec.choice is not None:
+        return spec.choice.index(value)
+    return value[0] if isinstance(value, tuple) else value
+
+
+@pytest.mark.parametrize("name", ["registerauto", "registersift", "batchregister"])
+def test_every_option_is_reachable_from_processing_with_the_same_default(provider, name):
+    from qgis.core import QgsProcessingContext
+
+    from hamta.core.options import OutputOptions, RegisterOptions, processing_key, resolve_options
+    from hamta.processing.options import option_values
+    from tests.conftest import option_samples
+
+    alg = provider.algorithm(name).create()
+    method = alg.method() if hasattr(alg, "method") else None
+    defaults = resolve_options(RegisterOptions(), method) if method else RegisterOptions(model="affine")
+    context = QgsProcessingContext()
+    options, _, output = register_settings(option_values(alg, {}, context))
+    assert options == defaults and output == OutputOptions()
+    for f, spec, value in option_samples():
+        key = processing_key(f, spec)
+        assert alg.parameterDefinition(key) is not None, f"{name} lacks {key}"
+        values = option_values(alg, {key: _processing_value(spec, value)}, context)
+        options, _, output = register_settings(values)
+        assert getattr(options if hasattr(options, f.name) else output, f.name) == value, key
+
+
+def test_a_method_module_added_shows_as_an_algorithm_with_its_parameters(provider, new_method_module, demo_pair,
+                                                                         tmp_path):
+    import processing
+    from hamta.processing.batch_algorithm import batch_methods
+
+    provider.refreshAlgorithms()
+    try:
+        alg = provider.algorithm("registertestmethod")
+        assert alg is not None and alg.displayName() == "Test method" and "SIFT under another name" in \
+            alg.shortHelpString()
+        names = [p.name() for p in alg.parameterDefinitions()]
+        assert {"P_RATIO", "P_N_FEATURES", "TOLERANCE", "MODEL"} <= set(names)
+        assert new_method_module in batch_methods()
+        res = processing.run("hamta:registertestmethod", dict(
+            TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], P_RATIO=0.75,
+            OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json")))
+        assert res["METHOD"] == new_method_module and res["VERDICT"] == "verified"
+    finally:
+        import hamta.core.methods.registry as registry
+
+        registry._REGISTRY.pop(new_method_module, None)
+        provider.refreshAlgorithms()

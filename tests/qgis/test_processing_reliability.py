@@ -88,6 +88,19 @@ def test_an_unexpected_error_is_wrapped(provider, pair, tmp_path, monkeypatch):
         _run("registersift", dict(TARGET=pair["target"], REFERENCE=pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
 
 
+def test_a_bug_in_a_method_names_the_method(provider, pair, tmp_path, monkeypatch):
+    import hamta.processing.register_algorithm as alg
+    from hamta.core.errors import MethodCrashed
+
+    def broken(*args, **kwargs):
+        cause = ValueError("operands could not be broadcast")
+        raise MethodCrashed("sift", cause) from cause
+
+    monkeypatch.setattr(alg, "run", broken)
+    with pytest.raises(QgsProcessingException, match=r"unexpected error \(ValueError in method 'sift': operands could"):
+        _run("registersift", dict(TARGET=pair["target"], REFERENCE=pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
+
+
 def _layers(path):
     with sqlite3.connect(path) as con:
         return sorted(r[0] for r in con.execute("SELECT table_name FROM gpkg_contents WHERE data_type = 'features'"))
