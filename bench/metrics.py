@@ -27,13 +27,14 @@ def judge(case, result=None, error: Optional[BaseException] = None) -> dict:
         matrix = getattr(result.model, "matrix", None)
         row.update(verdict=v.verdict if v else None, verified=bool(result.verified), method_used=result.method,
                    quality={k: x for k, x in (v.to_dict() if v else {}).items() if k != "sites"},
-                   auto=result.auto, model_matrix=None if matrix is None else np.asarray(matrix).tolist())
+                   auto=None if result.auto is None else result.auto.to_dict(),
+                   model_matrix=None if matrix is None else np.asarray(matrix).tolist())
     if case.truth is None:  # nothing to find: any verified result is a confident wrong answer
         row.update(success=(result is None or not result.verified) and not row["crashed"],
                    false_verified=bool(result and result.verified),
                    error=None if error is None else f"{type(error).__name__}: {error}")
         if result is not None:
-            row.update(rmse_px=result.stats["rmse_px"], n_gcps=result.stats["n_gcps"])
+            row.update(rmse_px=result.stats.rmse_px, n_gcps=result.stats.n_gcps)
         return row
     corr = result.correspondences if result is not None else getattr(error, "correspondences", None)
     if corr is not None and len(corr):
@@ -51,7 +52,7 @@ def judge(case, result=None, error: Optional[BaseException] = None) -> dict:
     if "smooth" in case.info:  # the nonrigid family: the error where the field is smooth at the window scale
         smooth = np.asarray(case.info["smooth"], bool)
         row["rmse_cp_smooth"] = float(np.sqrt(np.mean(e[smooth] ** 2))) if smooth.any() else None
-    row.update(rmse_cp=rmse, max_cp=float(e.max()), success=right, rmse_px=result.stats["rmse_px"],
-               rms_loo_px=result.stats["rms_loo_px"], n_gcps=result.stats["n_gcps"],
+    row.update(rmse_cp=rmse, max_cp=float(e.max()), success=right, rmse_px=result.stats.rmse_px,
+               rms_loo_px=result.stats.rms_loo_px, n_gcps=result.stats.n_gcps,
                false_verified=result.verified and not right, false_flagged=right and not result.verified)
     return row

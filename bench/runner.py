@@ -147,7 +147,7 @@ def run_case(spec: CaseSpec, config: BenchConfig) -> List[dict]:
         row = {"family": spec.family, "case": spec.name, "method": method, "model": spec.model,
                "tolerance_px": case.tolerance_px, "n_check_points": int(len(case.check_points)),
                "time_s": wall,
-               "timings_s": result.timings if result is not None else {"total": wall},
+               "timings_s": result.timings.to_dict() if result is not None else {"total": wall},
                "peak_rss_mb": round(mem.peak, 1),
                "diagnostics": result.diagnostics if result is not None else {}}
         if floor:

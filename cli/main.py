@@ -61,25 +61,19 @@ def explain(exc: HamtaError) -> str:
 
 def print_result(result, written) -> None:
     """What the run found: the attempts of 'auto', the verdict first, then the self-reported fit."""
+    from ..core.outcome import attempt_lines
     from ..core.outputs.tags import counts_text, pixel_mode_text, verdict_text
 
-    for a in (result.auto or {}).get("attempts", []):
-        mark = "*" if a.get("accepted") else " "
-        print(f"{mark} tried {a['method']}{_params(a['params'])}: {a['outcome']} ({a['time_s']:.1f} s) - {a['reason']}")
+    for line in attempt_lines(result.auto):
+        print(line)
     print(f"result: {verdict_text(result)}")
     if result.pixel_mode:
         print(f"note: {pixel_mode_text()}")
     s = result.stats
     print(f"method {result.method}, model {result.model.kind}: {counts_text(s)}; "
-          f"self-reported RMSE {s['rmse_px']:.3f} px, RMS_LOO {_fmt(s['rms_loo_px'])} px; "
-          f"{result.timings.get('auto_total', result.timings['total']):.2f} s")
+          f"self-reported RMSE {s.rmse_px:.3f} px, RMS_LOO {_fmt(s.rms_loo_px)} px; {result.timings.wall:.2f} s")
     for name, path in written.items():
         print(f"{name:8s} {path}")
-
-
-def _params(params: dict) -> str:
-    return "" if not params else "[" + ",".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
-                                               for k, v in params.items()) + "]"
 
 
 def _fmt(v) -> str:
@@ -177,11 +171,11 @@ def cmd_demo(args) -> int:
                                     (1000, 1000))
     s = result.stats
     print(f"Sample pair:   {sample['target']}  ->  {sample['reference']}")
-    print(f"Method {result.method}, model {result.model.kind}: {s['n_gcps']} GCPs, self-reported RMSE "
-          f"{s['rmse_px']:.3f} px, RMS_LOO {_fmt(s['rms_loo_px'])} px")
+    print(f"Method {result.method}, model {result.model.kind}: {s.n_gcps} GCPs, self-reported RMSE "
+          f"{s.rmse_px:.3f} px, RMS_LOO {_fmt(s.rms_loo_px)} px")
     print(f"TRUE check-point error against the known transform: RMSE {rmse:.3f} px, max {worst:.3f} px "
           f"(reference pixels)")
-    print(f"Time {elapsed:.2f} s, peak memory {s['peak_rss_mb']:.0f} MB")
+    print(f"Time {elapsed:.2f} s, peak memory {s.peak_rss_mb:.0f} MB")
     print("Outputs:")
     for name, path in written.items():
         print(f"  {name:8s} {path}")

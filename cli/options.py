@@ -16,8 +16,6 @@ def add_options(parser: argparse.ArgumentParser) -> None:
         for f, spec in option_fields(cls):
             default = f.default
             shown = spec.unset if default is None else default
-            if spec.choice is not None and default is not None:
-                shown = default
             kwargs = {"dest": f.name, "help": f"{spec.help} (default: {shown})".replace("%", "%%")}
             if isinstance(default, bool):
                 kwargs.update(action="store_true", help=spec.help.replace("%", "%%"))

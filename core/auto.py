@@ -18,9 +18,10 @@ from __future__ import annotations
 import dataclasses
 import time
 from dataclasses import dataclass
-from typing import Callable, List, Mapping
+from typing import Callable, List, Mapping, Optional
 
 from .errors import DeadlineReached, InsufficientMatchesError, method_crashes
+from .outcome import Attempt, AutoRun
 from .progress import Monitor
 from .verify import corroborate, corroborating, result_rank
 
@@ -60,15 +61,15 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
     """
     chain = CHAIN if chain is None else chain
     start = time.perf_counter()
-    attempts: List[dict] = []
+    attempts: List[Attempt] = []
     found = []
     best, chosen = None, None
     for i, step in enumerate(chain):
         elapsed = time.perf_counter() - start
-        record = {"method": step.method, "params": dict(step.params), "why": step.why}
+
+        spent = f"time budget of {options.auto_budget_s:g} s spent"
         if elapsed > options.auto_budget_s:
-            attempts.append(dict(record, outcome="skipped", reason=f"time budget of {options.auto_budget_s:g} s spent",
-                                 time_s=0.0))
+            attempts.append(tried(step, "skipped", spent))
             continue
         t0 = time.perf_counter()
         step_monitor = monitor.span(i / len(chain), (i + 1) / len(chain))
@@ -78,20 +79,18 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
             with method_crashes(step.method):
                 result = attempt(step.method, dict(step.params), step_monitor, step.refine)
         except DeadlineReached:
-            attempts.append(dict(record, outcome="stopped", reason=f"time budget of {options.auto_budget_s:g} s spent",
-                                 time_s=round(time.perf_counter() - t0, 3)))
+            attempts.append(tried(step, "stopped", spent, t0))
             continue
         except InsufficientMatchesError as exc:  # the one signal of "this method found no model"
-            attempts.append(dict(record, outcome="no model", reason=_first_line(exc),
-                                 time_s=round(time.perf_counter() - t0, 3)))
+            attempts.append(tried(step, "no model", _first_line(exc), t0))
             continue
         v = result.verification
-        attempts.append(dict(record, outcome=v.verdict, reason="; ".join(v.reasons) or "verified",
-                             time_s=round(time.perf_counter() - t0, 3)))
+        attempts.append(tried(step, v.verdict, "; ".join(v.reasons) or "verified", t0))
         partner = None if v.verified else corroborating(result, found, options.tolerance_px)
         if partner is not None:
             result = corroborate(result, partner[0], partner[1])
-            attempts[-1].update(outcome="verified", reason=_first_line(result.verification.corroboration["summary"]))
+            attempts[-1] = dataclasses.replace(attempts[-1], outcome="verified",
+                                               reason=_first_line(result.verification.corroboration["summary"]))
         found.append(result)
         if best is None or result_rank(result) > result_rank(best):
             best, chosen = result, len(attempts) - 1
@@ -101,11 +100,15 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
     if best is None:
         raise InsufficientMatchesError(
             "No method found a registration ('auto' tried " + "; ".join(
-                f"{a['method']}: {a['reason']}" for a in attempts) + ").", 0, 1)
-    for i, a in enumerate(attempts):
-        a["accepted"] = i == chosen
-    timings = dict(best.timings, auto_total=round(time.perf_counter() - start, 4))
-    return dataclasses.replace(best, auto={"attempts": attempts, "chosen": chosen}, timings=timings)
+                f"{a.method}: {a.reason}" for a in attempts) + ").", 0, 1)
+    timings = dataclasses.replace(best.timings, auto_total=round(time.perf_counter() - start, 4))
+    return dataclasses.replace(best, auto=AutoRun(tuple(attempts), chosen).accepting(chosen), timings=timings)
+
+
+def tried(step: Step, outcome: str, reason: str, t0: Optional[float] = None) -> Attempt:
+    """The attempt of ``step``: its outcome, why, and the time since ``t0`` (0 when it did not start)."""
+    return Attempt(step.method, dict(step.params), step.why, outcome, reason,
+                   0.0 if t0 is None else round(time.perf_counter() - t0, 3))
 
 
 def _first_line(exc: BaseException) -> str:

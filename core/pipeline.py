@@ -23,6 +23,7 @@ from .io.working import Plan, WorkingImage, prepare_working_images
 from .local import LocalParams, local_correction
 from .methods import get_method
 from .options import RegisterOptions, resolve_options
+from .outcome import Timings
 from .progress import Clock, Monitor
 from .refine import refine_estimate
 from .result import RegistrationResult, make_gcps, make_stats, params_dict
@@ -151,8 +152,7 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
     clock.lap("verify")
     ref_info = inputs.reference
     to_map = (lambda xy: xy) if not ref_info.georeferenced else (lambda xy: pixel_to_map(ref_info.transform, xy))
-    timings = dict(inputs.timings, **clock.laps)
-    timings["total"] = round(sum(timings.values()), 4)
+    timings = Timings.from_laps(dict(inputs.timings, **clock.laps))
     return RegistrationResult(
         method=spec.name, params=params_dict(params), options=dataclasses.asdict(options), model=fit.model,
         target=inputs.target, reference=ref_info, plan=inputs.plan, gcps=make_gcps(fit, to_map),

@@ -12,6 +12,7 @@ from .coords import as_xy, gdal_coefficients, pixel_to_map
 from .estimation.robust import FinalFit
 from .io.raster import RasterInfo
 from .io.working import Plan
+from .outcome import AutoRun, Stats, Timings
 from .types import Correspondences, Matches
 from .verify import Verification
 from .version import __version__
@@ -51,18 +52,18 @@ class RegistrationResult:
     method: str
     params: dict
     options: dict
-    model: object
+    model: object  # a model of hamta.core.estimation (apply, to_dict, kind): target px -> reference px
     target: RasterInfo
     reference: RasterInfo
     plan: Plan
     gcps: List[Gcp]
-    stats: dict
-    timings: dict
+    stats: Stats
+    timings: Timings
     notes: List[str] = field(default_factory=list)
     diagnostics: dict = field(default_factory=dict)
     correspondences: Optional[Correspondences] = None
     verification: Optional[Verification] = None
-    auto: Optional[dict] = None
+    auto: Optional[AutoRun] = None  # the methods 'auto' tried
     run_id: Optional[str] = None  # set when outputs are written: every file of one set carries it
     local: Optional[object] = None  # the local correction's grid (hamta.core.local.LocalGrid), when asked for
 
@@ -106,12 +107,12 @@ class RegistrationResult:
             "gcps": [{"id": i + 1, "target_px": list(g.target_px), "reference_px": list(g.reference_px),
                       "map": list(g.map_xy), "residual_px": g.residual_px, "residual_xy_px": list(g.residual_xy),
                       "score": g.score, "enabled": g.enabled} for i, g in enumerate(self.gcps)],
-            "stats": self.stats,
-            "timings_s": self.timings,
+            "stats": self.stats.to_dict(),
+            "timings_s": self.timings.to_dict(),
             "notes": list(self.notes),
             "diagnostics": self.diagnostics,
             "quality": None if self.verification is None else self.verification.to_dict(),
-            "auto": self.auto,
+            "auto": None if self.auto is None else self.auto.to_dict(),
             "local": None if self.local is None else self.local.summary(),
             "versions": versions(),
         }
@@ -178,21 +179,21 @@ def _new_places(candidates: np.ndarray, taken: np.ndarray, p: Correspondences, l
     return np.asarray(kept, int)
 
 
-def make_stats(matches: Matches, first: Correspondences, fit: FinalFit) -> dict:
+def make_stats(matches: Matches, first: Correspondences, fit: FinalFit) -> Stats:
     """Counts and self-reported residual figures of a registration (never its accuracy)."""
     p, used = fit.points, fit.used
     used_res = np.linalg.norm(_residuals(fit)[used], axis=1)
     loo = fit.model.loo_residuals(p.target_px[used], p.reference_px[used])
-    return {
-        "n_keypoints_target": int(matches.n_target), "n_keypoints_reference": int(matches.n_reference),
-        "n_matches": int(len(matches)), "n_inliers": int(first.inlier.sum()), "n_gcps": int(len(used)),
-        "n_refined": int(len(p)) if fit.refined else 0,
-        "rmse_px": float(np.sqrt(np.mean(used_res ** 2))),
-        "rms_loo_px": float(np.sqrt(np.nanmean(loo ** 2))) if np.isfinite(loo).any() else None,
-        "max_residual_px": float(used_res.max()),
-        "refined": bool(fit.refined),
-        "peak_rss_mb": peak_rss_mb(),
-    }
+    return Stats(
+        n_keypoints_target=int(matches.n_target), n_keypoints_reference=int(matches.n_reference),
+        n_matches=int(len(matches)), n_inliers=int(first.inlier.sum()), n_gcps=int(len(used)),
+        n_refined=int(len(p)) if fit.refined else 0,
+        rmse_px=float(np.sqrt(np.mean(used_res ** 2))),
+        rms_loo_px=float(np.sqrt(np.nanmean(loo ** 2))) if np.isfinite(loo).any() else None,
+        max_residual_px=float(used_res.max()),
+        refined=bool(fit.refined),
+        peak_rss_mb=peak_rss_mb(),
+    )
 
 
 def _residuals(fit: FinalFit) -> np.ndarray:

@@ -1,4 +1,5 @@
-"""Processing algorithms that register a raster with one Hamta method each (thin adapters)."""
+"""The Processing algorithm that registers a raster with 'auto' or one method (a thin adapter; one
+instance per method with a Toolbox entry, see :mod:`hamta.processing.provider`)."""
 from __future__ import annotations
 
 import dataclasses
@@ -26,6 +27,7 @@ from ..core.auto import AUTO
 from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
 from ..core.methods import get_method
 from ..core.options import resolve_options
+from ..core.outcome import attempt_lines
 from ..core.outputs.tags import counts_text, pixel_mode_text
 from .catalogue import AUTO_ALGORITHM
 from .help import help_url
@@ -77,13 +79,13 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
     """Registers with one method: 'auto', or a registered method with a Toolbox entry (its id, title,
     help and parameters come from the registry)."""
 
-    def __init__(self, method_name: str = AUTO):
-        super().__init__()
-        self.method_name = method_name
-
     TARGET, REFERENCE, KEEP_UNVERIFIED = "TARGET", "REFERENCE", "KEEP_UNVERIFIED"
     OUTPUT, GCP_LAYER, GCP_POINTS, GCP_VRT, REPORT = "OUTPUT", "GCP_LAYER", "GCP_POINTS", "GCP_VRT", "REPORT"
     OUTPUT_HTML = "OUTPUT_HTML"
+
+    def __init__(self, method_name: str = AUTO):
+        super().__init__()
+        self.method_name = method_name
 
     def method(self):
         """The registered method this algorithm runs (None for 'auto', which chooses among them)."""
@@ -255,8 +257,8 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         results = {self.OUTPUT: written.get("raster"), self.GCP_LAYER: layer,
                    self.GCP_POINTS: written.get("points"), self.GCP_VRT: written.get("vrt"),
                    self.REPORT: written.get("report"), self.OUTPUT_HTML: written.get("html"),
-                   "RMSE_PX": s["rmse_px"], "RMS_LOO_PX": s["rms_loo_px"],
-                   "N_GCPS": s["n_gcps"], "VERDICT": result.verification.verdict, "METHOD": result.method}
+                   "RMSE_PX": s.rmse_px, "RMS_LOO_PX": s.rms_loo_px,
+                   "N_GCPS": s.n_gcps, "VERDICT": result.verification.verdict, "METHOD": result.method}
         return {k: v for k, v in results.items() if v is not None}
 
     def explain(self, exc):
@@ -267,9 +269,8 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         return self.tr("{} (set '{}').").format(exc, definition.description())
 
     def _log(self, result, feedback):
-        for a in (result.auto or {}).get("attempts", []):
-            feedback.pushInfo(self.tr("Tried {}: {} ({:.1f} s) - {}").format(a["method"], a["outcome"], a["time_s"],
-                                                                            a["reason"]))
+        for line in attempt_lines(result.auto):
+            feedback.pushInfo(line)
         for note in result.notes:
             feedback.pushInfo(note)
         v = result.verification
@@ -283,4 +284,4 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         s = result.stats
         feedback.pushInfo(self.tr("{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, "
                                   "not its accuracy).").format(
-            counts_text(s), s["rmse_px"], "n/a" if s["rms_loo_px"] is None else f"{s['rms_loo_px']:.3f}"))
+            counts_text(s), s.rmse_px, "n/a" if s.rms_loo_px is None else f"{s.rms_loo_px:.3f}"))

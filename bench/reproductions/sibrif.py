@@ -68,7 +68,7 @@ def table1(folder: str, data_dir: str, methods=TABLE1_METHODS, repeats: int = 3)
         times, result = [], None
         for _ in range(repeats):
             result, corr = _register(case, m)
-            times.append(result.timings["total"] if result is not None else float("nan"))
+            times.append(result.timings.total if result is not None else float("nan"))
         ok = result is not None and float(np.sqrt(np.mean(case.errors(result.model) ** 2))) <= 3.0
         finite = [t for t in times if t == t]
         rows.append({"method": m, "n_matches": len(corr) if corr is not None else 0,

@@ -190,7 +190,7 @@ def _facts(result, scale: Optional[MapScale], outputs: Mapping[str, str], writte
         t_reg = _e(f"{k:.4g} reference px per target px")
     else:
         t_reg = f"{scale.px(k)} per px ({_e(f'{k:.4g}')} reference px per target px, at the target centre)"
-    rmse = result.stats.get("rmse_px")
+    rmse = result.stats.rmse_px
     rows = [("reference CRS", crs), ("reference pixel size", ref_size),
             ("target pixel size, own georeferencing", t_own), ("target pixel size, as registered", t_reg),
             ("GCP RMSE", _both(rmse, scale, ".3f")),

@@ -70,7 +70,7 @@ def _residual_section(result, ref: Preview) -> str:
            "a distortion the model does not follow.")
     hist_cap = (f"Residual magnitudes of the {len(mag)} enabled GCPs (reference px); the {len(r_off)} rejected "
                 f"matches are left out. Max {_num(mag.max(), '.2f')} px.")
-    hist = histogram_figure(mag, result.stats.get("rmse_px"))
+    hist = histogram_figure(mag, result.stats.rmse_px)
     return ("<h2>2. Residuals</h2><div class=grid>"
             + _figure(_jpeg(arrows), "residual vectors", cap, *ref.shape[::-1])
             + _figure(_png(hist), "residual histogram", hist_cap, hist.shape[1], hist.shape[0]) + "</div>")
@@ -124,7 +124,7 @@ def _verification_section(result, ref: Preview, scale: Optional[MapScale] = None
 
 
 def _numbers_section(result, scale: Optional[MapScale] = None) -> str:
-    s = result.stats
+    s = result.stats.to_dict()
     stats = [("GCPs (enabled)", str(s.get("n_gcps", "–"))), ("RMSE", _both(s.get("rmse_px"), scale, ".3f")),
              ("leave-one-out RMS", _both(s.get("rms_loo_px"), scale, ".3f")),
              ("max residual", _both(s.get("max_residual_px"), scale, ".3f")),
@@ -132,7 +132,7 @@ def _numbers_section(result, scale: Optional[MapScale] = None) -> str:
              ("keypoints target / reference",
               f"{_e(s.get('n_keypoints_target', '–'))} / {_e(s.get('n_keypoints_reference', '–'))}"),
              ("refined at full resolution", _e(s.get("refined", "–")))]
-    times = [(k, _num(t, ".3f", " s")) for k, t in result.timings.items()]
+    times = [(k, _num(t, ".3f", " s")) for k, t in result.timings.to_dict().items()]
     unit = "reference px" if scale is None else f"reference px and {scale.symbol}"
     out = ("<h2>5. Model and statistics</h2><div class=grid><div><h3>Model</h3>" + model_html(result.model)
            + f"</div><div><h3>GCP statistics ({_e(unit)})</h3>" + _rows(stats)
@@ -140,10 +140,8 @@ def _numbers_section(result, scale: Optional[MapScale] = None) -> str:
     if result.notes:
         out += "<h3>Notes</h3><ul>" + "".join(f"<li>{_e(n)}</li>" for n in result.notes) + "</ul>"
     if result.auto:
-        chosen = result.auto.get("chosen")
-        rows = [(_e(a.get("method")) + (" <b>(chosen)</b>" if i == chosen else ""), _e(a.get("outcome")),
-                 _num(a.get("time_s"), ".2f", " s"), _e(a.get("reason", ""))) for i, a in
-                enumerate(result.auto.get("attempts", []))]
+        rows = [(_e(a.method) + (" <b>(chosen)</b>" if i == result.auto.chosen else ""), _e(a.outcome),
+                 _num(a.time_s, ".2f", " s"), _e(a.reason)) for i, a in enumerate(result.auto.attempts)]
         out += "<h3>Attempts of <code>auto</code></h3>" + _table(["method", "outcome", "time", "reason"], rows,
                                                                  [False, False, True])
     return out

@@ -30,13 +30,13 @@ def verdict_text(result) -> str:
     return f"NOT VERIFIED ({v.verdict}): " + "; ".join(v.reasons)
 
 
-def counts_text(stats: dict) -> str:
+def counts_text(stats) -> str:
     """Where the GCPs came from, in words that add up: refinement measures its own points at full
     resolution, so a refined run can keep more GCPs than it had matches."""
-    if stats.get("refined"):
-        return (f"{stats['n_gcps']} GCPs kept of {stats['n_refined']} points measured at full resolution "
-                f"(seeded by {stats['n_inliers']} agreeing matches of {stats['n_matches']})")
-    return f"{stats['n_gcps']} GCPs kept of {stats['n_inliers']} agreeing matches (of {stats['n_matches']} found)"
+    if stats.refined:
+        return (f"{stats.n_gcps} GCPs kept of {stats.n_refined} points measured at full resolution "
+                f"(seeded by {stats.n_inliers} agreeing matches of {stats.n_matches})")
+    return f"{stats.n_gcps} GCPs kept of {stats.n_inliers} agreeing matches (of {stats.n_matches} found)"
 
 
 def pixel_mode_text() -> str:

@@ -10,8 +10,8 @@ from hamta.core.auto import Step
 def test_easy_pair_stops_at_sift(demo_pair):
     result = register(demo_pair["target"], demo_pair["reference"])
     assert result.method == "sift" and result.verified
-    attempts = result.auto["attempts"]
-    assert [a["method"] for a in attempts] == ["sift"] and attempts[0]["accepted"]
+    attempts = result.auto.attempts
+    assert [a.method for a in attempts] == ["sift"] and attempts[0].accepted
     assert result.to_report()["auto"]["chosen"] == 0
 
 
@@ -21,10 +21,10 @@ def test_escalates_to_a_method_whose_result_verifies(tmp_path, shared, monkeypat
     chain = (Step("phasecorr", {}, "test"), Step("sift", {}, "test"), Step("cfog", {}, "test"))
     monkeypatch.setattr(auto_module, "CHAIN", chain)
     result = register(case.target, case.reference)
-    attempts = result.auto["attempts"]
-    assert result.method == "cfog" and result.verified and attempts[-1]["accepted"]
-    assert [a["method"] for a in attempts] == ["phasecorr", "sift", "cfog"]
-    assert all(a["outcome"] != "verified" for a in attempts[:2]) and all(a["time_s"] >= 0 for a in attempts)
+    attempts = result.auto.attempts
+    assert result.method == "cfog" and result.verified and attempts[-1].accepted
+    assert [a.method for a in attempts] == ["phasecorr", "sift", "cfog"]
+    assert all(a.outcome != "verified" for a in attempts[:2]) and all(a.time_s >= 0 for a in attempts)
 
 
 def test_nothing_found_names_every_attempt(raster_writer, demo_pair, monkeypatch):
@@ -87,9 +87,9 @@ def test_no_model_from_a_method_lets_auto_go_on(demo_pair, raising_method, monke
     name = raising_method(InsufficientMatchesError("only 2 matches", 2, 8))
     monkeypatch.setattr(auto_module, "CHAIN", (Step(name, {}, "test"), Step("sift", {}, "test")))
     result = register(demo_pair["target"], demo_pair["reference"])
-    first, second = result.auto["attempts"]
-    assert (first["method"], first["outcome"], first["reason"]) == (name, "no model", "only 2 matches")
-    assert result.method == "sift" and second["accepted"] and result.verified
+    first, second = result.auto.attempts
+    assert (first.method, first.outcome, first.reason) == (name, "no model", "only 2 matches")
+    assert result.method == "sift" and second.accepted and result.verified
 
 
 def test_a_wrong_method_name_or_parameter_is_the_callers_error_not_a_crash(demo_pair):

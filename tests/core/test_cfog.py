@@ -50,7 +50,7 @@ def test_product_registers_the_multimodal_proxy(tmp_path, shared, mapping):
     case = build_case(spec, str(tmp_path), 512, str(shared / "data"))
     result = register(case.target, case.reference, "cfog")
     assert np.sqrt(np.mean(case.errors(result.model) ** 2)) < 1.0
-    assert result.stats["n_gcps"] >= 50 and "coarse" in result.diagnostics
+    assert result.stats.n_gcps >= 50 and "coarse" in result.diagnostics
 
 
 def test_product_registers_the_real_sar_optical_pair_within_3_px(tmp_path, shared):
@@ -65,7 +65,7 @@ def test_decimated_multimodal_pair_is_refined_with_cfog(tmp_path, shared):
     case = build_case(spec, str(tmp_path), 700, str(shared / "data"))
     options = RegisterOptions(max_working_pixels=120_000)
     result = register(case.target, case.reference, "cfog", options=options)
-    assert result.stats["refined"] and result.stats["n_refined"] >= 50
+    assert result.stats.refined and result.stats.n_refined >= 50
     assert np.sqrt(np.mean(case.errors(result.model) ** 2)) < 1.0
 
 

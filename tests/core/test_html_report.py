@@ -16,6 +16,7 @@ from hamta.core import RegisterOptions, register
 from hamta.core.errors import RegistrationCanceled
 from hamta.core.estimation.models import LinearModel, PolynomialModel
 from hamta.core.io.raster import open_raster
+from hamta.core.outcome import Attempt, AutoRun
 from hamta.core.outputs import html as report_html
 from hamta.core.outputs import html_sections as report_sections
 from hamta.core.outputs import preview as report_preview
@@ -84,9 +85,8 @@ def test_gcp_table_is_capped(sift_result, tmp_path):
 
 
 def test_auto_attempts_notes_and_escaping(sift_result, tmp_path):
-    auto = {"attempts": [{"method": "orb", "outcome": "failed", "time_s": 0.5, "reason": "<b>no</b> support"},
-                         {"method": "sift", "outcome": "verified", "time_s": 1.25, "reason": "verified"}],
-            "chosen": 1}
+    auto = AutoRun((Attempt("orb", {}, "test", "failed", "<b>no</b> support", 0.5),
+                    Attempt("sift", {}, "test", "verified", "verified", 1.25)), 1).accepting(1)
     result = dataclasses.replace(sift_result, auto=auto, notes=["a <script>alert(1)</script> note"])
     text = _write(result, tmp_path)
     assert "Attempts of" in text and "sift <b>(chosen)</b>" in text and "1.25 s" in text
@@ -186,7 +186,7 @@ def _visible(text: str) -> str:
 def test_crs_map_units_pixel_sizes_and_date(sift_result, tmp_path):
     before = datetime.datetime.now(datetime.timezone.utc).replace(microsecond=0)
     text = _write(sift_result, tmp_path)
-    ref, v, rmse = sift_result.reference, sift_result.verification, sift_result.stats["rmse_px"]
+    ref, v, rmse = sift_result.reference, sift_result.verification, sift_result.stats.rmse_px
     assert ref.crs.to_epsg() == 32639 and ref.pixel_size == 10.0
     assert "WGS 84 / UTM zone 39N (EPSG:32639)" in text and "unit: metre" in text
     assert "10.00 m per px" in text  # the reference's pixel size
@@ -260,7 +260,7 @@ def test_pixel_mode_has_a_banner_and_no_map_units(sift_result, tmp_path):
     assert "reference CRS</th><td>none (pixel mode)" in text
     assert "EPSG" not in text and " m)" not in text and " m per px" not in text and "metre" not in text
     assert "map X (reference px)" in text and "residual (m)" not in text
-    rmse = result.stats["rmse_px"]
+    rmse = result.stats.rmse_px
     assert f"{rmse:.3f} px</td>" in text
 
 

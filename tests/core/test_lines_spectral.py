@@ -189,7 +189,7 @@ def test_faithful_pipeline_matches_intersections_mutually_and_registers_or_says_
     for method in ("lines-spectral-faithful", "lines-eigen", "lines-vspm"):
         try:
             options = RegisterOptions(pixel_mode=True)
-            assert register(case.target, case.reference, method, options=options).stats["n_gcps"] >= 5
+            assert register(case.target, case.reference, method, options=options).stats.n_gcps >= 5
         except InsufficientMatchesError as exc:  # the usual outcome: the thesis's lines rarely repeat
             assert "agree on one affine transform" in str(exc) and len(exc.correspondences) >= 3
 

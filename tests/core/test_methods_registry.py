@@ -93,3 +93,13 @@ def test_a_method_module_added_shows_in_every_front_end(new_method_module, capsy
     code = main(["register", "--target", demo_pair["target"], "--reference", demo_pair["reference"], "--out",
                  str(tmp_path / "o"), "--method", name, "--param", "ratio=0.75", "--quiet"])
     assert code == 0 and f"method {name}" in capsys.readouterr().out
+
+
+def test_the_command_line_and_the_bench_list_the_methods_in_one_order(capsys):
+    from hamta.bench.runner import default_methods
+    from hamta.cli.main import main
+
+    assert main(["methods"]) == 0
+    rows = [line.split()[0] for line in capsys.readouterr().out.splitlines()[1:] if line.strip()][:-1]
+    assert rows == default_methods(quick=False) == ["auto", *all_methods()]
+    assert rows[1] == "sift"  # the fast path first

@@ -21,7 +21,7 @@ def test_sift_recovers_rotation_scale_shift_to_half_a_pixel(tmp_path, landsat, a
     err = case.errors(result.model)
     assert len(case.check_points) > 200
     assert np.sqrt(np.mean(err ** 2)) < 0.5, f"check-point RMSE {np.sqrt(np.mean(err ** 2)):.3f} px"
-    assert result.stats["n_gcps"] >= 50
+    assert result.stats.n_gcps >= 50
 
 
 @pytest.mark.parametrize("model", ["similarity", "projective", "polynomial-2", "tps"])
@@ -49,7 +49,7 @@ def test_decimated_working_images_are_refined_to_full_resolution(tmp_path, lands
                     options=RegisterOptions(model="affine", max_working_pixels=90_000, refine="on"))
     e_coarse = np.sqrt(np.mean(case.errors(coarse.model) ** 2))
     e_fine = np.sqrt(np.mean(case.errors(fine.model) ** 2))
-    assert fine.stats["refined"] and not coarse.stats["refined"]
+    assert fine.stats.refined and not coarse.stats.refined
     assert e_fine < 0.25 and e_fine < e_coarse
 
 

@@ -150,7 +150,7 @@ def hard_sar_case(shared, tmp_path_factory):
 def test_ndsift_pc_registers_a_one_look_sar_pair(hard_sar_case):
     result = register(hard_sar_case.target, hard_sar_case.reference, "ndsift-pc",
                       options=RegisterOptions(model="affine"))
-    assert result.stats["refined"]
+    assert result.stats.refined
     assert math.sqrt(np.mean(hard_sar_case.errors(result.model) ** 2)) < 0.5
 
 
@@ -163,7 +163,7 @@ def test_paper_pipeline_reports_table_two_diagnostics(easy_sar_case):
     result = register(easy_sar_case.target, easy_sar_case.reference, "ndsift-pc-faithful")
     kp = result.diagnostics["keypoints_target"]
     assert 0 < kp["after_pc"] < kp["before_pc"]
-    assert result.stats["n_inliers"] == result.stats["n_matches"]  # the paper fits every match
+    assert result.stats.n_inliers == result.stats.n_matches  # the paper fits every match
     assert math.sqrt(np.mean(easy_sar_case.errors(result.model) ** 2)) < 3.0
     ablation = register(easy_sar_case.target, easy_sar_case.reference, "ndss-sift")
     kp = ablation.diagnostics["keypoints_target"]
@@ -204,7 +204,7 @@ def test_a_failed_refinement_pass_falls_back_to_the_previous_one(easy_sar_case, 
 
     monkeypatch.setattr(refine, "refine_points", second_pass_is_garbage)
     result = register(easy_sar_case.target, easy_sar_case.reference, "ndsift-pc")
-    assert len(calls) == 2 and result.stats["refined"]
+    assert len(calls) == 2 and result.stats.refined
     assert any("refinement pass 2" in n for n in result.notes)
     assert math.sqrt(np.mean(easy_sar_case.errors(result.model) ** 2)) < 0.5
 

@@ -73,4 +73,4 @@ def test_rift_baseline_matches_a_pair_without_scale_change(shared):
     case = build("mm-map", 1, str(shared / "data"))
     result = register(case.target, case.reference, "rift", options=RegisterOptions(tolerance_px=15, pixel_mode=True))
     assert math.sqrt(np.mean(case.errors(result.model) ** 2)) < 10.0
-    assert result.stats["n_inliers"] >= 20
+    assert result.stats.n_inliers >= 20
