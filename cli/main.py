@@ -294,7 +294,8 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="parallel cases (default: all CPUs)")
     b.add_argument("--out", default="bench-output", help="folder for bench.json, bench.md and the cases")
     b.add_argument("--data", default=None, help="development data folder (default ../shared/data)")
-    b.add_argument("--no-reproductions", action="store_true", help="skip the papers' own evaluations")
+    b.add_argument("--no-reproductions", action="store_true",
+                   help="skip the papers' own evaluations and the engineering goals")
     b.add_argument("--quiet", action="store_true", help="no progress bar")
     b.set_defaults(func=cmd_bench)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..core.options import OutputOptions, RegisterOptions, cli_flag, option_fields
+from ..core.options import OutputOptions, RegisterOptions, cli_flag, option_fields, option_type
 
 OPTION_CLASSES = (RegisterOptions, OutputOptions)
 FLAGS = {f.name: cli_flag(f, spec) for cls in OPTION_CLASSES for f, spec in option_fields(cls)}  # field -> flag
@@ -17,7 +17,8 @@ def add_options(parser: argparse.ArgumentParser) -> None:
             default = f.default
             shown = spec.unset if default is None else default
             kwargs = {"dest": f.name, "help": f"{spec.help} (default: {shown})".replace("%", "%%")}
-            if isinstance(default, bool):
+            kind = option_type(cls, f.name)
+            if kind is bool:
                 kwargs.update(action="store_true", help=spec.help.replace("%", "%%"))
             elif spec.kind == "list":
                 kwargs.update(action="append", default=[], metavar="KEY=VALUE",
@@ -27,7 +28,6 @@ def add_options(parser: argparse.ArgumentParser) -> None:
                 if not spec.choice.aliases:  # others are checked by the option, which knows the aliases
                     kwargs["choices"] = spec.choice.values
             else:
-                kind = int if f.type in ("int", "Optional[int]") else float if "float" in f.type else str
                 kwargs.update(type=kind, default=default, metavar=cli_flag(f, spec)[2:].replace("-", "_").upper())
             parser.add_argument(cli_flag(f, spec), **kwargs)
 

@@ -102,7 +102,7 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
             "No method found a registration ('auto' tried " + "; ".join(
                 f"{a.method}: {a.reason}" for a in attempts) + ").", 0, 1)
     timings = dataclasses.replace(best.timings, auto_total=round(time.perf_counter() - start, 4))
-    return dataclasses.replace(best, auto=AutoRun(tuple(attempts), chosen).accepting(chosen), timings=timings)
+    return dataclasses.replace(best, auto=AutoRun.of(attempts, chosen), timings=timings)
 
 
 def tried(step: Step, outcome: str, reason: str, t0: Optional[float] = None) -> Attempt:

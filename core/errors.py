@@ -62,11 +62,12 @@ class MethodCrashed(Exception):
 
 @contextmanager
 def method_crashes(method: str):
-    """Inside, any exception but a :class:`HamtaError` (or a KeyboardInterrupt) is re-raised as
-    :class:`MethodCrashed` naming ``method``, from the original."""
+    """Inside, any exception but a :class:`HamtaError`, a lack of memory or an operating-system (I/O)
+    error (resources, not bugs; a KeyboardInterrupt neither) is re-raised as :class:`MethodCrashed`
+    naming ``method``, from the original."""
     try:
         yield
-    except (HamtaError, MethodCrashed):
+    except (HamtaError, MethodCrashed, MemoryError, OSError):
         raise
     except Exception as exc:
         raise MethodCrashed(method, exc) from exc

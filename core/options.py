@@ -16,8 +16,12 @@ the only place method defaults are resolved.
 from __future__ import annotations
 
 import math
+import typing
 from dataclasses import dataclass, field, fields, replace
+from functools import lru_cache
 from typing import Mapping, Optional, Tuple
+
+import numpy as np
 
 
 @dataclass(frozen=True)
@@ -116,10 +120,6 @@ ROBUST = Choice("robust", {
 
 MODEL_CHOICES = MODEL.values
 RESAMPLING_CHOICES = RESAMPLING.values
-GRID_CHOICES = GRID.values
-REFINE_CHOICES = REFINE.values
-TARGET_GEOREF_CHOICES = TARGET_GEOREF.values
-ROBUST_CHOICES = ROBUST.values
 
 
 def canonical_model(name: str) -> str:
@@ -177,6 +177,35 @@ def option_fields(cls):
     return [(f, f.metadata["option"]) for f in fields(cls)]
 
 
+@lru_cache(maxsize=None)
+def _hints(cls) -> dict:
+    return typing.get_type_hints(cls)
+
+
+def option_type(cls, name: str) -> type:
+    """The type of an option's values, ``Optional`` unwrapped: bool, int, float, str or tuple."""
+    hint = _hints(cls)[name]
+    if typing.get_origin(hint) is typing.Union:
+        hint = next(a for a in typing.get_args(hint) if a is not type(None))
+    kind = typing.get_origin(hint) or hint
+    if kind not in (bool, int, float, str, tuple):
+        raise TypeError(f"option {name}: values of type {hint} have no front-end mapping")
+    return kind
+
+
+FLAG_WORDS = {"1": True, "true": True, "yes": True, "on": True, "0": False, "false": False, "no": False, "off": False}
+
+
+def _flag(name: str, value) -> bool:
+    """A flag given as a bool, 0/1 or a word (bench variants write ``local=1``)."""
+    if isinstance(value, (bool, int, np.bool_)):
+        if value in (0, 1):
+            return bool(value)
+    elif isinstance(value, str) and value.lower() in FLAG_WORDS:
+        return FLAG_WORDS[value.lower()]
+    raise ValueError(f"{name} must be true or false, got {value!r}")
+
+
 def cli_flag(f, spec: Option) -> str:
     return "--" + (spec.flag or f.name.replace("_", "-"))
 
@@ -188,20 +217,19 @@ def processing_key(f, spec: Option) -> str:
 def check_options(options) -> None:
     """Check every field of ``options`` against its metadata; choices are stored in canonical spelling."""
     for f, spec in option_fields(type(options)):
-        value = getattr(options, f.name)
+        value, kind = getattr(options, f.name), option_type(type(options), f.name)
         if value is None and f.default is None:
             continue
         if spec.choice is not None:
             object.__setattr__(options, f.name, spec.choice.check(value))
-        elif isinstance(f.default, bool):
-            if not isinstance(value, bool):
-                raise ValueError(f"{f.name} must be true or false, got {value!r}")
-        elif f.type in ("int", "Optional[int]"):
+        elif kind is bool:
+            object.__setattr__(options, f.name, _flag(f.name, value))
+        elif kind is int:
             _whole(f.name, value, int(spec.minimum or 0))
-        elif f.type in ("float", "Optional[float]") and spec.minimum is None:
+        elif kind is float and spec.minimum is None:
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise ValueError(f"{f.name} must be a number, got {value!r}")
-        elif f.type in ("float", "Optional[float]"):
+        elif kind is float:
             _number(f.name, value, positive=spec.above)
 
 
@@ -269,9 +297,9 @@ class RegisterOptions:
         "this, such a reference is refused)")
 
     def __post_init__(self):
-        check_options(self)
-        if self.local_window_px != 0:
+        if self.local_window_px != 0:  # 0 (automatic) or a window of at least 16 px
             _whole("local_window_px", self.local_window_px, 16)
+        check_options(self)
 
 
 def _whole(name: str, value, minimum: int) -> None:

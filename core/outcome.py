@@ -50,7 +50,8 @@ class Stats:
 
 @dataclass(frozen=True)
 class Timings:
-    """Seconds spent in each stage of one registration; None for a stage that did not run.
+    """Seconds spent in each stage of one registration; ``local`` and ``auto_total`` are None when
+    there was no local correction or no 'auto'.
 
     ``open`` and ``read`` the inputs, ``match`` (the method), ``estimate`` (robust fit), ``refine``
     (full resolution), ``fit`` (the final model on the GCPs), ``local`` (the local correction),
@@ -124,8 +125,10 @@ class AutoRun:
     attempts: Tuple[Attempt, ...]
     chosen: Optional[int]
 
-    def accepting(self, chosen: Optional[int]) -> "AutoRun":
-        return AutoRun(tuple(replace(a, accepted=i == chosen) for i, a in enumerate(self.attempts)), chosen)
+    @classmethod
+    def of(cls, attempts, chosen: Optional[int]) -> "AutoRun":
+        """The run of ``attempts``, the ``chosen`` one marked accepted."""
+        return cls(tuple(replace(a, accepted=i == chosen) for i, a in enumerate(attempts)), chosen)
 
     def to_dict(self) -> dict:
         return {"attempts": [a.to_dict() for a in self.attempts], "chosen": self.chosen}

@@ -42,8 +42,9 @@ def method_entries() -> Tuple[Entry, ...]:
             tree = ast.parse(f.read(), name)
         for node in ast.walk(tree):
             if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "Toolbox":
-                entries.append(Entry(*(ast.literal_eval(a) for a in node.args)))
-    return tuple(entries)
+                values = [ast.literal_eval(a) for a in node.args]
+                entries.append(Entry(*values, **{k.arg: ast.literal_eval(k.value) for k in node.keywords}))
+    return tuple(sorted(entries, key=lambda e: e.title))  # as the Toolbox lists them
 
 
 def algorithm_entries() -> Tuple[Entry, ...]:

@@ -32,7 +32,7 @@ def method_values(method, values: Mapping[str, Any]) -> Dict[str, Any]:
 
 def _option(f, spec, value):
     """The core value of one option from its Processing value (None: the option's default)."""
-    if value is None or value == "":
+    if value is None or value == "" or (spec.above and value == 0):  # a 0 left in a field that must be above 0
         return f.default
     if spec.choice is not None:
         return spec.choice.at(value) if isinstance(value, int) else spec.choice.check(value)

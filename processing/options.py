@@ -14,9 +14,9 @@ from qgis.core import (
 )
 from qgis.PyQt.QtCore import QCoreApplication
 
-from ..core.options import OutputOptions, RegisterOptions, option_fields, processing_key
+from ..core.options import OutputOptions, RegisterOptions, option_fields, option_type, processing_key
 
-CONTEXT = "RegisterAlgorithm"  # the option labels, help and choice labels are translated in this context
+CONTEXT = "RegisterAlgorithm"  # Hamta's strings shown by the registration algorithms (core's included)
 OPTION_CLASSES = (RegisterOptions, OutputOptions)
 KEYS = {f.name: processing_key(f, spec) for cls in OPTION_CLASSES for f, spec in option_fields(cls)}  # field -> name
 
@@ -47,13 +47,16 @@ def option_parameters(defaults: RegisterOptions, output_defaults: OutputOptions 
     made = []
     for cls, values in zip(OPTION_CLASSES, (defaults, output_defaults)):
         for f, spec in option_fields(cls):
-            p = _parameter(f, spec, getattr(values, f.name), bands)
-            p.setHelp(tr(spec.help) + (f" ({tr('empty')}: {tr(spec.unset)})" if spec.unset else ""))
+            p = _parameter(f, spec, option_type(cls, f.name), getattr(values, f.name), bands)
+            optional = bool(p.flags() & QgsProcessingParameterDefinition.FlagOptional)
+            empty = QCoreApplication.translate("RegisterAlgorithm", "empty")
+            text = tr(spec.help) + (f" ({empty}: {tr(spec.unset)})" if spec.unset and optional else "")
+            p.setHelp(text[:1].upper() + text[1:])  # the CLI's help, as a sentence
             made.append(p if not spec.advanced else advanced(p))
     return sorted(made, key=lambda p: bool(p.flags() & QgsProcessingParameterDefinition.FlagAdvanced))
 
 
-def _parameter(f, spec, default, bands: bool):
+def _parameter(f, spec, kind: type, default, bands: bool):
     name, label = processing_key(f, spec), tr(spec.label)
     number = QgsProcessingParameterNumber
     if spec.choice is not None:
@@ -64,10 +67,9 @@ def _parameter(f, spec, default, bands: bool):
         return QgsProcessingParameterCrs(name, label, optional=True)
     if spec.kind == "list":
         return QgsProcessingParameterString(name, label, "", optional=True)
-    if isinstance(f.default, bool):
+    if kind is bool:
         return QgsProcessingParameterBoolean(name, label, default)
-    whole = f.type in ("int", "Optional[int]")
-    p = number(name, label, number.Integer if whole else number.Double, default, optional=default is None)
+    p = number(name, label, number.Integer if kind is int else number.Double, default, optional=default is None)
     if spec.minimum is not None:
         p.setMinimum(spec.minimum)
     return p
@@ -91,9 +93,9 @@ def option_values(alg, parameters, context) -> dict:
                 values[key] = (crs.authid() or crs.toWkt()) if crs.isValid() else None
             elif spec.kind == "list":
                 values[key] = alg.parameterAsString(parameters, key, context)
-            elif isinstance(f.default, bool):
+            elif option_type(cls, f.name) is bool:
                 values[key] = alg.parameterAsBoolean(parameters, key, context)
-            elif f.type in ("int", "Optional[int]"):
+            elif option_type(cls, f.name) is int:
                 values[key] = alg.parameterAsInt(parameters, key, context)
             else:
                 values[key] = alg.parameterAsDouble(parameters, key, context)

@@ -32,9 +32,7 @@ from ..core.outputs.tags import counts_text, pixel_mode_text
 from .catalogue import AUTO_ALGORITHM
 from .help import help_url
 from .mapping import method_parameter_name, method_values, register_settings
-from .options import KEYS, advanced, option_parameters, option_values
-
-_CONTEXT = "RegisterAlgorithm"  # every string below is translated in this context
+from .options import CONTEXT, KEYS, advanced, option_parameters, option_values
 
 
 def decimals(value) -> int:
@@ -92,7 +90,7 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         return None if self.method_name == AUTO else get_method(self.method_name)
 
     def tr(self, text):
-        return QCoreApplication.translate(_CONTEXT, text)
+        return QCoreApplication.translate(CONTEXT, text)
 
     def createInstance(self):
         return RegisterAlgorithm(self.method_name)

@@ -37,7 +37,7 @@ class Method:
     title : str
         One-line human name.
     summary : str
-        What it does and when to use it.
+        What it does and when to use it (``hamta methods --verbose``; the help of its Toolbox algorithm).
     citation : str
         The published source (or 'baseline').
     params_type : type
@@ -86,9 +86,10 @@ class Method:
 
     @property
     def menu_key(self):
-        """Its place in every list of methods: the fast path (SIFT) first, the product methods, then
-        baselines, then faithful versions, each kind by name."""
-        return self.name != "sift", {"method": 0, "baseline": 1, "faithful": 2}.get(self.kind, 3), self.name
+        """Its place in every list of methods: product methods, then baselines, then faithful versions,
+        each kind by name. The Processing batch's method enum follows it (qgis_process passes its index:
+        a method added later may move the indexes after it; names are stable)."""
+        return {"method": 0, "baseline": 1, "faithful": 2}.get(self.kind, 3), self.name
 
     @property
     def advice(self) -> str:

@@ -52,7 +52,6 @@ __all__ = ["NULL_PARTNERS", "NULL_TURNS", "VERDICTS", "VERDICT_RANK", "Verificat
            "corroborate", "corroborating", "error_field", "footprint", "judge", "mann_whitney_greater",
            "model_distance", "overlap_grid", "result_rank", "shared_error", "site_grid", "template_side", "verify"]
 
-_tail = binomial_tail  # its name before the split (tests/core/test_verify.py imports it)
 NULL_PARTNERS = 4  # other sites' target content each template is also compared with (wrong alignments)
 NULL_TURNS = 3  # and, turned or mirrored (rot180, mirror x, mirror y), with the first three of those again
 

@@ -85,8 +85,8 @@ def test_gcp_table_is_capped(sift_result, tmp_path):
 
 
 def test_auto_attempts_notes_and_escaping(sift_result, tmp_path):
-    auto = AutoRun((Attempt("orb", {}, "test", "failed", "<b>no</b> support", 0.5),
-                    Attempt("sift", {}, "test", "verified", "verified", 1.25)), 1).accepting(1)
+    auto = AutoRun.of([Attempt("orb", {}, "test", "failed", "<b>no</b> support", 0.5),
+                       Attempt("sift", {}, "test", "verified", "verified", 1.25)], 1)
     result = dataclasses.replace(sift_result, auto=auto, notes=["a <script>alert(1)</script> note"])
     text = _write(result, tmp_path)
     assert "Attempts of" in text and "sift <b>(chosen)</b>" in text and "1.25 s" in text

@@ -40,3 +40,14 @@ def test_every_option_has_help_a_short_label_and_a_flag_of_its_own():
             assert f.default is not None or spec.unset, f"{f.name}: say what leaving it empty means"
             flags.append(cli_flag(f, spec))
     assert len(flags) == len(set(flags))
+
+
+def test_bench_variants_set_flags_as_written():
+    """``auto[local=1]`` (README, docs/benchmarks.md) sets the flag; a value that is not a flag is refused."""
+    from hamta.bench.runner import parse_variant
+
+    _, _, options = parse_variant("auto[local=1]")
+    assert RegisterOptions(**options).local is True
+    assert RegisterOptions(pixel_mode="false").pixel_mode is False
+    with pytest.raises(ValueError, match="local must be true or false"):
+        RegisterOptions(local=2)

@@ -119,13 +119,13 @@ def test_chance_tails_match_scipy():
     import); they must agree with scipy's."""
     from scipy import stats
 
-    from hamta.core.verify import _tail, mann_whitney_greater
+    from hamta.core.verify import binomial_tail, mann_whitney_greater
 
     rng = np.random.default_rng(1)
     for _ in range(200):
         n = int(rng.integers(1, 40))
         k, p = int(rng.integers(1, n + 1)), float(rng.uniform(0.001, 0.6))
-        assert _tail(k, n, p) == pytest.approx(stats.binom.sf(k - 1, n, p), rel=1e-9, abs=1e-300)
+        assert binomial_tail(k, n, p) == pytest.approx(stats.binom.sf(k - 1, n, p), rel=1e-9, abs=1e-300)
         x = np.round(rng.normal(0.5, 1, int(rng.integers(3, 40))), 1)
         y = np.round(rng.normal(0, 1, int(rng.integers(8, 300))), 1)
         expected = stats.mannwhitneyu(x, y, alternative="greater", method="asymptotic").pvalue

@@ -118,6 +118,8 @@ def test_parameter_mapping_is_pure():
     assert options.target_band is None and options.reference_band == 2
     assert output.resampling == "cubic" and output.grid == "reference"
     assert paths.raster == "/x/o.tif" and paths.points is None
+    options, _, output = register_settings({"TOLERANCE": 0, "RANSAC_THRESHOLD": 0.0, "RESOLUTION": 0})
+    assert options.tolerance_px == 3.0 and options.ransac_threshold_px is None and output.resolution is None
 
 
 def test_processing_run_writes_outputs_that_load_as_layers(provider, demo_pair, tmp_path):
