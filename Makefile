@@ -15,8 +15,11 @@ export PIP_DISABLE_PIP_VERSION_CHECK := 1
 demo: $(VENV)/.ok
 	$(VENV)/bin/hamta demo --out demo-output
 
+# The two halves run side by side (each keeps about one of two cores busy); each one's output is
+# printed whole when it ends.
 test: $(VENV)/.ok $(QVENV)/.ok
-	$(MAKE) --no-print-directory lint test-wheels test-debian
+	$(MAKE) --no-print-directory lint
+	$(MAKE) --no-print-directory -j2 --output-sync=target test-wheels test-debian
 
 lint: $(VENV)/.ok
 	$(VENV)/bin/ruff check .
