@@ -21,8 +21,6 @@ from dataclasses import dataclass, field, fields, replace
 from functools import lru_cache
 from typing import Mapping, Optional, Tuple
 
-import numpy as np
-
 
 @dataclass(frozen=True)
 class Choice:
@@ -127,6 +125,9 @@ def canonical_model(name: str) -> str:
     return MODEL.check(name)
 
 
+LABEL_CHARS = 44  # longer labels make the parameters panel of an 800 px QGIS dialog scroll sideways
+
+
 @dataclass(frozen=True)
 class Option:
     """How one option is shown and checked (the metadata of its field).
@@ -134,7 +135,7 @@ class Option:
     Attributes
     ----------
     label : str
-        A few words for a dialog (at most 44 characters: longer ones make QGIS's panel scroll).
+        A few words for a dialog (at most :data:`LABEL_CHARS`).
     help : str
         One sentence: the CLI's help and the dialog's tooltip.
     advanced : bool
@@ -197,11 +198,10 @@ FLAG_WORDS = {"1": True, "true": True, "yes": True, "on": True, "0": False, "fal
 
 
 def _flag(name: str, value) -> bool:
-    """A flag given as a bool, 0/1 or a word (bench variants write ``local=1``)."""
-    if isinstance(value, (bool, int, np.bool_)):
-        if value in (0, 1):
-            return bool(value)
-    elif isinstance(value, str) and value.lower() in FLAG_WORDS:
+    """A flag given as a bool (numpy's too), 0/1 or a word (bench variants write ``local=1``)."""
+    if not isinstance(value, (str, float)) and value in (0, 1):
+        return bool(value)
+    if isinstance(value, str) and value.lower() in FLAG_WORDS:
         return FLAG_WORDS[value.lower()]
     raise ValueError(f"{name} must be true or false, got {value!r}")
 

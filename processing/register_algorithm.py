@@ -26,7 +26,7 @@ from ..core import RegisterOptions, UnverifiedResult, run
 from ..core.auto import AUTO
 from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
 from ..core.methods import get_method
-from ..core.options import resolve_options
+from ..core.options import LABEL_CHARS, resolve_options
 from ..core.outcome import attempt_lines
 from ..core.outputs.tags import counts_text, pixel_mode_text
 from .catalogue import AUTO_ALGORITHM
@@ -39,9 +39,6 @@ def decimals(value) -> int:
     """Decimals a spin box shows for a default ``value``: its own, at least 2 (QGIS shows 6: '3.000000')."""
     text = f"{float(value):.6f}".rstrip("0")
     return min(6, max(2, len(text.split(".")[1])))
-
-
-LABEL_CHARS = 44  # longer labels make the parameters panel of an 800 px dialog scroll sideways
 
 
 def short_label(text: str, name: str) -> str:

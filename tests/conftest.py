@@ -74,7 +74,7 @@ def demo_pair(tmp_path_factory):
 def option_samples():
     """``(field, Option, value)`` for every registration and output option, ``value`` valid and not its
     default: what the tests that reach every option from each front end set."""
-    from hamta.core.options import OutputOptions, RegisterOptions, option_fields
+    from hamta.core.options import OutputOptions, RegisterOptions, option_fields, option_type
 
     samples = []
     for cls in (RegisterOptions, OutputOptions):
@@ -85,11 +85,11 @@ def option_samples():
                 value = "EPSG:4326"
             elif spec.kind == "list":
                 value = ("COMPRESS=LZW",)
-            elif isinstance(f.default, bool):
+            elif option_type(cls, f.name) is bool:
                 value = not f.default
             elif spec.kind.startswith("band:"):
                 value = 2
-            elif f.type in ("int", "Optional[int]"):
+            elif option_type(cls, f.name) is int:
                 value = max(f.default or 0, int(spec.minimum or 0)) + 17
             else:
                 value = (f.default or 0.0) + 1.5

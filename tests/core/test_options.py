@@ -4,7 +4,7 @@ import pytest
 
 from hamta.cli.main import build_parser
 from hamta.cli.options import settings_from
-from hamta.core.options import OutputOptions, RegisterOptions, cli_flag, option_fields
+from hamta.core.options import LABEL_CHARS, OutputOptions, RegisterOptions, cli_flag, option_fields
 from tests.conftest import option_samples
 
 COMMANDS = {"register": ["register", "--reference", "r.tif", "--target", "t.tif", "--out", "o"],
@@ -36,7 +36,7 @@ def test_every_option_has_help_a_short_label_and_a_flag_of_its_own():
     flags = []
     for cls in (RegisterOptions, OutputOptions):
         for f, spec in option_fields(cls):
-            assert spec.help and 0 < len(spec.label) <= 44, f.name
+            assert spec.help and 0 < len(spec.label) <= LABEL_CHARS, f.name
             assert f.default is not None or spec.unset, f"{f.name}: say what leaving it empty means"
             flags.append(cli_flag(f, spec))
     assert len(flags) == len(set(flags))
