@@ -12,12 +12,12 @@ from xml.sax.saxutils import quoteattr
 STYLE_NAME = "Hamta GCPs by residual"
 # (filter on the layer's fields, legend label, marker shape, fill colour, size mm)
 RULES = (
-    ('"enabled" = 1 AND "residual_px" < 0.5', "used, residual < 0.5 px", "circle", "26,150,65,255", 2.4),
-    ('"enabled" = 1 AND "residual_px" >= 0.5 AND "residual_px" < 1', "used, 0.5 - 1 px", "circle", "166,217,106,255",
+    ('"enabled" AND "residual_px" < 0.5', "used, residual < 0.5 px", "circle", "26,150,65,255", 2.4),
+    ('"enabled" AND "residual_px" >= 0.5 AND "residual_px" < 1', "used, 0.5 - 1 px", "circle", "166,217,106,255",
      2.4),
-    ('"enabled" = 1 AND "residual_px" >= 1 AND "residual_px" < 2', "used, 1 - 2 px", "circle", "253,174,97,255", 2.6),
-    ('"enabled" = 1 AND "residual_px" >= 2', "used, 2 px or more", "circle", "215,25,28,255", 2.8),
-    ('"enabled" = 0', "rejected match (not used for the fit)", "cross2", "130,130,130,255", 2.0),
+    ('"enabled" AND "residual_px" >= 1 AND "residual_px" < 2', "used, 1 - 2 px", "circle", "253,174,97,255", 2.6),
+    ('"enabled" AND "residual_px" >= 2', "used, 2 px or more", "circle", "215,25,28,255", 2.8),
+    ('NOT "enabled"', "rejected match (not used for the fit)", "cross2", "130,130,130,255", 2.0),
 )
 
 
