@@ -27,10 +27,11 @@ from .nonrigid import Field, nonrigid_case
 from .synthetic import make_landscape
 
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
-            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch")
+            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch", "basemap")
 # The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
 # output writer against gdalwarp, no registration cases of its own), 'nonrigid' (local distortion, for the
-# local correction) and 'batch' (throughput on a Dask cluster, no cases of its own) run on request.
+# local correction), 'batch' (throughput on a Dask cluster, no cases of its own) and 'basemap' (onto a local
+# tile server, a study of its own: hamta.bench.goals.basemap) run on request.
 DEFAULT_FAMILIES = FAMILIES[:10]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
@@ -276,7 +277,7 @@ _SPECS = {"crops": _crops, "should-fail": _should_fail,
           **{f: _multimodal_set(f) for f in multimodal_set.CATEGORIES},
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
-          "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: []}
+          "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: [], "basemap": lambda quick: []}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -413,6 +414,8 @@ def available(family: str, data_dir: str) -> bool:
         return os.path.exists(os.path.join(data_dir, "pairs", "ground_truth.json"))
     if family in multimodal_set.CATEGORIES:
         return multimodal_set.available(data_dir, family)
+    if family == "basemap":  # tiles cut from the Landsat sample, no fallback
+        return os.path.exists(os.path.join(data_dir, SOURCE_FILES["landsat"]))
     return True
 
 

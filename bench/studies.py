@@ -4,6 +4,7 @@ from __future__ import annotations
 
 def all_studies():
     """Every study, the papers' reproductions first."""
+    from .goals.basemap import STUDY as basemap
     from .goals.batch import STUDY as batch
     from .goals.large import STUDY as large
     from .goals.writing import STUDY as writing
@@ -12,4 +13,4 @@ def all_studies():
     from .reproductions.rilbp import STUDY as rilbp
     from .reproductions.sibrif import STUDY as sibrif
 
-    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch]
+    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap]

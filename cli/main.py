@@ -227,7 +227,10 @@ def build_parser() -> argparse.ArgumentParser:
     r = sub.add_parser("register", help="register a target raster onto a reference raster",
                        description="Register TARGET onto REFERENCE and write the georeferenced outputs into OUT.")
     r.add_argument("--reference", required=True, help="georeferenced reference raster (its CRS is the map; one "
-                                                      "without georeferencing needs --pixel-mode)")
+                                                      "without georeferencing needs --pixel-mode); or a map service: "
+                                                      "a tile URL such as 'https://host/{z}/{x}/{y}.png', a QGIS XYZ "
+                                                      "or WMS layer source, or a GDAL string (/vsicurl/..., WMTS:..., "
+                                                      "WCS:..., a GDAL WMS XML file); see --extent")
     r.add_argument("--target", required=True, help="raster to georeference")
     r.add_argument("--out", required=True, help="output folder (created if missing)")
     r.add_argument("--method", default="auto",
@@ -248,15 +251,15 @@ def build_parser() -> argparse.ArgumentParser:
 
     bt = sub.add_parser("batch", help="register many targets, in parallel on Dask (a local cluster or a scheduler)",
                         description="Register every pair of SOURCE: a job list (.csv or .gpkg with columns target, "
-                                    "reference, method, model, output) or a folder/glob of targets registered onto "
-                                    "--reference. Each pair writes into its own folder under --out (a row's "
+                                    "reference, method, model, extent, output) or a folder/glob of targets registered "
+                                    "onto --reference. Each pair writes into its own folder under --out (a row's "
                                     "output: a relative folder inside --out); a rerun skips "
                                     "pairs already done. Exit code: 0 all verified, 3 some not verified, 1 some "
                                     "failed.")
     bt.add_argument("source", help="job list (.csv/.gpkg), a folder of targets, or a glob pattern (quote it)")
     bt.add_argument("--out", required=True, help="output folder: one sub-folder per pair, batch.gpkg and batch.csv")
-    bt.add_argument("--reference", default=None, help="the reference for targets from a folder or pattern (a raster "
-                                                      "or a VRT mosaic)")
+    bt.add_argument("--reference", default=None, help="the reference for targets from a folder or pattern (a raster, "
+                                                      "a VRT mosaic or a map service, as for 'register')")
     bt.add_argument("--method", default="auto", help="matching method of every pair (a job's own overrides it)")
     add_options(bt)
     bt.add_argument("--accept-unverified", action="store_true",
@@ -312,12 +315,23 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def _joined_values(argv: List[str]) -> List[str]:
+    """``--extent -8.9,...`` as ``--extent=-8.9,...``: argparse takes a value starting with '-' for a flag."""
+    out = []
+    for item in argv:
+        if out and out[-1] in ("--extent", "--resolution") and item[:1] == "-" and item[1:2].isdigit():
+            out[-1] = f"{out[-1]}={item}"
+        else:
+            out.append(item)
+    return out
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     """Run one ``hamta`` command; returns its exit code (see ``EXIT_*``); never shows a traceback
     unless ``HAMTA_DEBUG`` is set."""
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
+        args = parser.parse_args(_joined_values(sys.argv[1:] if argv is None else list(argv)))
     except SystemExit as exc:  # --help, --version, or a usage error argparse has already explained
         return exc.code if isinstance(exc.code, int) else EXIT_USAGE
     previous = _terminate_as_interrupt()

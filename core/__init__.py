@@ -6,7 +6,7 @@ The names below are imported on first use, so that importing one light module (`
 """
 from importlib import import_module
 
-_WHERE = {"register": "pipeline", "run": "run", "RegisterOptions": "options", "OutputOptions": "options",
+_WHERE = {"register": "pipeline", "run": "runner", "RegisterOptions": "options", "OutputOptions": "options",
           "RegistrationResult": "result", "__version__": "version", "HamtaError": "errors", "InputError": "errors",
           "NoOverlapError": "errors", "GeoreferencingError": "errors", "InsufficientMatchesError": "errors",
           "OutputError": "errors", "RegistrationCanceled": "errors", "UnverifiedResult": "errors",

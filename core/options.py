@@ -295,8 +295,16 @@ class RegisterOptions:
         False, "Pixel-to-pixel (reference not georeferenced)", "pixel-to-pixel registration onto a reference "
         "without georeferencing: its pixel grid stands in for the map and the outputs carry no CRS (without "
         "this, such a reference is refused)")
+    extent: Optional[str] = option(
+        None, "Search area", "where to look for a target without usable georeferencing: xmin,ymin,xmax,ymax with an "
+        "optional CRS after a comma (default CRS: the reference's, longitude and latitude for a map service)",
+        advanced=False, unset="the whole reference; required with a map service", kind="extent")
 
     def __post_init__(self):
+        if self.extent is not None:
+            from .extent import parse_extent
+
+            parse_extent(self.extent)
         if self.local_window_px != 0:  # 0 (automatic) or a window of at least 16 px
             _whole("local_window_px", self.local_window_px, 16)
         check_options(self)

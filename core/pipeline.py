@@ -1,4 +1,4 @@
-"""``register``: the one registration entry point; :func:`hamta.core.run.run` adds the outputs.
+"""``register``: the one registration entry point; :func:`hamta.core.runner.run` adds the outputs.
 
 Data flow (pixels are corner-convention, see :mod:`hamta.core.coords`): open both rasters ->
 plan the overlap and read working images -> the method matches them (working pixels) -> the
@@ -32,7 +32,7 @@ from .verify import VerifyParams, verify
 
 
 def register(target, reference, method: str = AUTO, params=None, options: RegisterOptions = RegisterOptions(),
-             progress=None, is_canceled=None, map_chunks=None) -> RegistrationResult:
+             progress=None, is_canceled=None, map_chunks=None, target_pixels=None) -> RegistrationResult:
     """Register the ``target`` raster onto the ``reference`` raster, and verify the result.
 
     Parameters
@@ -52,11 +52,14 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
     map_chunks : callable(fn, chunks) -> list, optional
         Where the local correction's windows are measured (a Dask client's workers for big scenes,
         see :mod:`hamta.core.batch`); here by default.
+    target_pixels : int, optional
+        A smaller pixel budget for a target searched without its georeferencing: its expected size
+        in the reference (see :mod:`hamta.core.remote`).
 
     Returns
     -------
     RegistrationResult
-        Nothing is written; see :func:`hamta.core.run.run`. ``result.verification`` says whether
+        Nothing is written; see :func:`hamta.core.runner.run`. ``result.verification`` says whether
         the result verified; an unverified result is returned too (front ends decide).
 
     Raises
@@ -68,7 +71,7 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
         (the original exception is its ``__cause__``).
     """
     monitor = Monitor(progress, is_canceled)
-    inputs = read_inputs(target, reference, options, monitor.span(0.0, 0.1))
+    inputs = read_inputs(target, reference, options, monitor.span(0.0, 0.1), target_pixels)
     rest = monitor.span(0.1, 1.0)
     if method == AUTO:
         if params:
@@ -98,7 +101,7 @@ class Inputs:
     timings: dict
 
 
-def read_inputs(target, reference, options: RegisterOptions, monitor: Monitor) -> Inputs:
+def read_inputs(target, reference, options: RegisterOptions, monitor: Monitor, target_pixels=None) -> Inputs:
     """Open both rasters, choose their bands, plan the overlap and read the working images."""
     clock = Clock()
     tgt_info, ref_info = open_raster(target, "target"), open_raster(reference, "reference")
@@ -113,7 +116,8 @@ def read_inputs(target, reference, options: RegisterOptions, monitor: Monitor) -
     monitor.report(0.2, "reading")
     tgt, ref, plan = prepare_working_images(tgt_info, ref_info, target_bands=bands[0], reference_bands=bands[1],
                                             max_pixels=options.max_working_pixels,
-                                            target_georef=options.target_georef)
+                                            target_georef=options.target_georef, extent=options.extent,
+                                            target_pixels=target_pixels)
     clock.lap("read")
     monitor.report(1.0, "reading")
     return Inputs(tgt_info, ref_info, bands[0], bands[1], tgt, ref, plan, clock.laps)

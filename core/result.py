@@ -66,6 +66,7 @@ class RegistrationResult:
     auto: Optional[AutoRun] = None  # the methods 'auto' tried
     run_id: Optional[str] = None  # set when outputs are written: every file of one set carries it
     local: Optional[object] = None  # the local correction's grid (hamta.core.local.LocalGrid), when asked for
+    reference_service: Optional[dict] = None  # the map service read as the reference (hamta.core.remote)
 
     @property
     def verified(self) -> bool:
@@ -100,7 +101,7 @@ class RegistrationResult:
             "options": self.options,
             "model": self.model.to_dict(),
             "target": _raster_dict(self.target),
-            "reference": dict(_raster_dict(ref), pixel_mode=self.pixel_mode),
+            "reference": dict(_raster_dict(ref), pixel_mode=self.pixel_mode, service=self.reference_service),
             "plan": {"mode": self.plan.mode,
                      "reference_window": _window_list(self.plan.reference_window),
                      "target_window": _window_list(self.plan.target_window)},

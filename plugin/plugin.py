@@ -1,15 +1,20 @@
-"""The QGIS plugin object: registers the Processing provider, loads translations and says once when
-the provider's algorithms cannot run (missing Python packages) and how to fix it."""
+"""The QGIS plugin object: registers the Processing provider and the 'Auto-georeference…' action
+(toolbar, Raster menu, raster layers' context menu), loads translations and says once when the
+provider's algorithms cannot run (missing Python packages) and how to fix it."""
 from __future__ import annotations
 
 import os
 
-from qgis.core import Qgis, QgsApplication, QgsMessageLog, QgsSettings
+from qgis.core import Qgis, QgsApplication, QgsMapLayerType, QgsMessageLog, QgsSettings
 from qgis.PyQt.QtCore import QCoreApplication, QTranslator
+from qgis.PyQt.QtGui import QIcon
+from qgis.PyQt.QtWidgets import QAction
 
 from ..processing.provider import HamtaProvider
+from .action import AutoGeoreference
 
-I18N = os.path.join(os.path.dirname(os.path.dirname(__file__)), "i18n")
+ROOT = os.path.dirname(os.path.dirname(__file__))
+I18N = os.path.join(ROOT, "i18n")
 
 
 def load_translator():
@@ -30,6 +35,8 @@ class HamtaPlugin:
         self.iface = iface
         self.provider = None
         self.translator = load_translator()
+        self.autogeoref = AutoGeoreference(iface)
+        self.action = None
 
     def initProcessing(self):  # noqa: N802 (QGIS's name)
         registry = QgsApplication.processingRegistry()
@@ -50,8 +57,25 @@ class HamtaPlugin:
 
     def initGui(self):  # noqa: N802
         self.initProcessing()
+        if self.action is None:
+            text = QCoreApplication.translate("AutoGeoreference", "Auto-georeference…")
+            self.action = QAction(QIcon(os.path.join(ROOT, "icon.svg")), text)  # kept here, deleted in unload()
+            self.action.setObjectName("mActionHamtaAutoGeoreference")
+            self.action.setToolTip(QCoreApplication.translate(
+                "AutoGeoreference", "Georeference the selected raster layer on the visible basemap (Hamta)"))
+            self.action.triggered.connect(self.autogeoref.show_dialog)
+            self.iface.addToolBarIcon(self.action)
+            self.iface.addPluginToRasterMenu("Hamta", self.action)
+            self.iface.addCustomActionForLayerType(self.action, "", QgsMapLayerType.RasterLayer, True)
 
     def unload(self):
+        if self.action is not None:
+            self.iface.removeCustomActionForLayerType(self.action)
+            self.iface.removePluginRasterMenu("Hamta", self.action)
+            self.iface.removeToolBarIcon(self.action)
+            self.action.deleteLater()
+            self.action = None
+        self.autogeoref.cancel_all()
         if self.provider is not None:
             QgsApplication.processingRegistry().removeProvider(self.provider)
             self.provider = None

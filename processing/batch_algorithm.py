@@ -20,6 +20,7 @@ from qgis.PyQt.QtCore import QCoreApplication
 
 from ..core import RegisterOptions
 from ..core.auto import AUTO
+from ..core.basemap.services import parse_service
 from ..core.batch import read_jobs, run_batch
 from ..core.batch.jobs import jobs_for_targets
 from ..core.batch.runner import unauthenticated_warning
@@ -114,6 +115,11 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         reference = self.parameterAsRasterLayer(parameters, self.REFERENCE, context)
         if not layers or reference is None:
             raise QgsProcessingException(self.tr("Choose target rasters and a reference raster, or a job list."))
+        if reference.providerType() != "gdal" and parse_service(reference.source()) is None:
+            raise QgsProcessingException(self.tr(
+                "The reference layer '{}' ({}) cannot be read by every pair of a batch: use a raster file, an XYZ or "
+                "WMS layer, or save the layer's area as a GeoTIFF first.").format(reference.name(),
+                                                                                 reference.providerType()))
         return jobs_for_targets([layer.source() for layer in layers], reference.source(), out)
 
     def processAlgorithm(self, parameters, context, feedback):

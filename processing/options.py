@@ -9,12 +9,14 @@ from qgis.core import (
     QgsProcessingParameterCrs,
     QgsProcessingParameterDefinition,
     QgsProcessingParameterEnum,
+    QgsProcessingParameterExtent,
     QgsProcessingParameterNumber,
     QgsProcessingParameterString,
 )
 from qgis.PyQt.QtCore import QCoreApplication
 
 from ..core.options import OutputOptions, RegisterOptions, option_fields, option_type, processing_key
+from .reference import extent_text
 
 CONTEXT = "RegisterAlgorithm"  # Hamta's strings shown by the registration algorithms (core's included)
 OPTION_CLASSES = (RegisterOptions, OutputOptions)
@@ -67,6 +69,8 @@ def _parameter(f, spec, kind: type, default, bands: bool):
         return QgsProcessingParameterCrs(name, label, optional=True)
     if spec.kind == "list":
         return QgsProcessingParameterString(name, label, "", optional=True)
+    if spec.kind == "extent":
+        return QgsProcessingParameterExtent(name, label, optional=True)
     if kind is bool:
         return QgsProcessingParameterBoolean(name, label, default)
     p = number(name, label, number.Integer if kind is int else number.Double, default, optional=default is None)
@@ -93,6 +97,9 @@ def option_values(alg, parameters, context) -> dict:
                 values[key] = (crs.authid() or crs.toWkt()) if crs.isValid() else None
             elif spec.kind == "list":
                 values[key] = alg.parameterAsString(parameters, key, context)
+            elif spec.kind == "extent":
+                values[key] = extent_text(alg.parameterAsExtent(parameters, key, context),
+                                          alg.parameterAsExtentCrs(parameters, key, context))
             elif option_type(cls, f.name) is bool:
                 values[key] = alg.parameterAsBoolean(parameters, key, context)
             elif option_type(cls, f.name) is int:

@@ -33,6 +33,7 @@ from .catalogue import AUTO_ALGORITHM
 from .help import help_url
 from .mapping import method_parameter_name, method_values, register_settings
 from .options import CONTEXT, KEYS, advanced, option_parameters, option_values
+from .reference import reference_source
 
 
 def decimals(value) -> int:
@@ -122,7 +123,8 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         method = self.method()
         d = RegisterOptions(model="affine") if method is None else resolve_options(RegisterOptions(), method)
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Target raster (to georeference)")))
-        self.addParameter(QgsProcessingParameterRasterLayer(self.REFERENCE, self.tr("Reference raster")))
+        self.addParameter(QgsProcessingParameterRasterLayer(
+            self.REFERENCE, self.tr("Reference raster or map layer (XYZ, WMS...)")))
         self.addParameter(QgsProcessingParameterBoolean(
             self.KEEP_UNVERIFIED, self.tr("Keep unverified results"), False))
         for p in option_parameters(d):
@@ -177,13 +179,17 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         return p
 
     def _raster_path(self, parameters, name, context):
-        layer = self.parameterAsRasterLayer(parameters, name, context)
-        if layer is None:
-            raise QgsProcessingException(self.invalidRasterError(parameters, name))
+        layer = self._layer(parameters, name, context)
         if layer.providerType() != "gdal":
             raise QgsProcessingException(self.tr("{} must be a raster file GDAL can read, not a '{}' layer.")
                                          .format(layer.name(), layer.providerType()))
         return layer.source()
+
+    def _layer(self, parameters, name, context):
+        layer = self.parameterAsRasterLayer(parameters, name, context)
+        if layer is None:
+            raise QgsProcessingException(self.invalidRasterError(parameters, name))
+        return layer
 
     def _values(self, parameters, context):
         v = option_values(self, parameters, context)
@@ -213,9 +219,13 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
     def processAlgorithm(self, parameters, context, feedback):
         method = self.method()
         target = self._raster_path(parameters, self.TARGET, context)
-        reference = self._raster_path(parameters, self.REFERENCE, context)
         values = self._values(parameters, context)
         options, paths, output = register_settings(values)
+        try:
+            reference = reference_source(self._layer(parameters, self.REFERENCE, context), options.extent, target,
+                                         options.max_working_pixels)
+        except HamtaError as exc:
+            raise QgsProcessingException(self.explain(exc)) from None
         if paths.gpkg and not paths.gpkg.lower().endswith(".gpkg"):
             raise QgsProcessingException(self.tr("GCP points are written to a GeoPackage: choose a .gpkg file (got "
                                                  "'{}').").format(values[self.GCP_LAYER]))

@@ -85,6 +85,8 @@ def option_samples():
                 value = "EPSG:4326"
             elif spec.kind == "list":
                 value = ("COMPRESS=LZW",)
+            elif spec.kind == "extent":
+                value = "10.5,59.5,11,60,EPSG:4326"
             elif option_type(cls, f.name) is bool:
                 value = not f.default
             elif spec.kind.startswith("band:"):

@@ -1,7 +1,9 @@
 """What a batch registers: one :class:`Job` per target/reference pair.
 
 Sources: a CSV file or a GeoPackage table with a ``target`` column and optional ``reference``,
-``method``, ``model`` and ``output`` columns (rasters relative to the list's folder); or a folder or
+``method``, ``model``, ``extent`` (a search area, see :mod:`hamta.core.extent`) and ``output``
+columns (rasters relative to the list's folder; a reference may also be a map service or a GDAL
+string, kept as written); or a folder or
 glob pattern of targets, all registered onto one reference (a raster or a VRT mosaic). A row's
 ``output`` is a folder inside ``out``, relative to it: an absolute path, a ``..`` that leaves
 ``out``, or two rows with the same folder are refused before any work. A job without its own output
@@ -13,11 +15,14 @@ import csv
 import glob
 import hashlib
 import os
+import re
 import sqlite3
 from dataclasses import dataclass
 from typing import List, Optional
 
+from ..basemap.services import parse_service
 from ..errors import InputError
+from ..extent import parse_extent
 
 RASTER_EXTENSIONS = (".tif", ".tiff", ".vrt", ".jp2", ".img", ".jpg", ".jpeg", ".png", ".nc", ".hdf", ".h5")
 
@@ -31,11 +36,13 @@ class Job:
     out: str
     method: Optional[str] = None
     model: Optional[str] = None
+    extent: Optional[str] = None
 
     @property
     def key(self) -> str:
-        """A stable id of the job (same inputs, method and output folder: same key)."""
-        text = "|".join([self.target, self.reference, self.out, self.method or "", self.model or ""])
+        """A stable id of the job (same inputs, method, search area and output folder: same key)."""
+        text = "|".join([self.target, self.reference, self.out, self.method or "", self.model or ""]
+                        + ([self.extent] if self.extent else []))
         return hashlib.sha1(text.encode()).hexdigest()[:16]
 
     @property
@@ -74,13 +81,19 @@ def _jobs(rows: list, base: str, out: str, reference: Optional[str], source: str
         target = _path(row.get("target"), base)
         if not target:
             raise InputError(f"Row {i} of {source} has no target.")
-        ref = _path(row.get("reference"), base) or (os.path.abspath(reference) if reference else None)
+        ref = _reference(row.get("reference"), base) or (_reference(reference, os.getcwd()) if reference else None)
         if not ref:
             raise InputError(f"Row {i} of {source} has no reference, and no --reference was given.")
         folder = outputs.get(i) or _unique(os.path.join(root, _stem(target)), used)
         used.add(folder)
+        extent = (row.get("extent") or "").strip() or None
+        if extent is not None:
+            try:
+                parse_extent(extent)
+            except ValueError as exc:
+                raise InputError(f"Row {i} of {source}: {exc}.") from None
         jobs.append(Job(target, ref, folder, (row.get("method") or "").strip() or None,
-                        (row.get("model") or "").strip() or None))
+                        (row.get("model") or "").strip() or None, extent))
     return jobs
 
 
@@ -157,6 +170,14 @@ def _targets(pattern: str) -> List[str]:
 def _path(value, base: str) -> Optional[str]:
     value = (value or "").strip() if isinstance(value, str) else None
     return os.path.abspath(os.path.join(base, value)) if value else None
+
+
+def _reference(value, base: str) -> Optional[str]:
+    """A reference as a path relative to ``base``, or as written when it is a map service or a GDAL string."""
+    value = (value or "").strip() if isinstance(value, str) else None
+    if value and (parse_service(value) is not None or value.startswith("/vsi") or re.match(r"[A-Za-z]\w+:", value)):
+        return value
+    return _path(value, base)
 
 
 def _stem(path: str) -> str:

@@ -1,6 +1,6 @@
 """The function every pair of a batch runs as, on whichever worker Dask gives it.
 
-:func:`register_job` registers one :class:`~hamta.core.batch.jobs.Job` with :func:`hamta.core.run.run`
+:func:`register_job` registers one :class:`~hamta.core.batch.jobs.Job` with :func:`hamta.core.runner.run`
 into the job's own output folder (published whole or not at all, so a worker killed mid-write
 leaves nothing half-written) and returns a plain record (JSON-able) of what happened; it never
 raises for a pair that fails, so one bad pair never stops a batch. A job whose folder already holds
@@ -42,12 +42,13 @@ class BatchSettings:
 def register_job(job: Job, settings: BatchSettings) -> dict:
     """Register ``job``; return its record (status 'verified', 'unverified' or 'failed')."""
     from ..outputs import OutputPaths
-    from ..run import run
+    from ..runner import run
 
     done = finished_record(job, settings)
     if done is not None:
         return done
     options = settings.options if job.model is None else replace(settings.options, model=job.model)
+    options = options if job.extent is None else replace(options, extent=job.extent)
     method = job.method or settings.method
     t0 = time.perf_counter()
     try:

@@ -110,8 +110,11 @@ class Plan:
 
 
 def prepare_working_images(target: RasterInfo, reference: RasterInfo, *, target_bands, reference_bands,
-                           max_pixels: int, target_georef: str = "auto"):
-    """Plan the overlap and read both working images.
+                           max_pixels: int, target_georef: str = "auto", extent: Optional[str] = None,
+                           target_pixels: Optional[int] = None):
+    """Plan the overlap and read both working images; without the target's georeferencing, only the
+    reference's part inside ``extent`` (a search area, see :mod:`hamta.core.extent`) is read, and the
+    target within ``target_pixels`` when given (a scale guess when searching a large area).
 
     Returns
     -------
@@ -126,9 +129,10 @@ def prepare_working_images(target: RasterInfo, reference: RasterInfo, *, target_
     if prior:
         return _prepare_with_prior(target, reference, target_bands, reference_bands, max_pixels, notes)
     mode = "search" if reference.georeferenced else "pixel"
-    tgt = _read_whole(target, target_bands, max_pixels, "target")
-    ref = _read_whole(reference, reference_bands, max_pixels, "reference")
-    return tgt, ref, Plan(mode, reference.window(), target.window(), tuple(notes))
+    window = reference.window() if extent is None else _search_window(reference, extent)
+    tgt = _read_whole(target, target_bands, min(max_pixels, target_pixels or max_pixels), "target")
+    ref = _read_whole(reference, reference_bands, max_pixels, "reference", window)
+    return tgt, ref, Plan(mode, window, target.window(), tuple(notes))
 
 
 def _prior_usable(target: RasterInfo, reference: RasterInfo, choice: str):
@@ -150,12 +154,28 @@ def _prior_usable(target: RasterInfo, reference: RasterInfo, choice: str):
     return False, notes
 
 
-def _read_whole(info: RasterInfo, bands, max_pixels: int, role: str) -> WorkingImage:
-    shape, factor = budget_shape(info.width, info.height, max_pixels)
-    data, valid = read_image(info, bands, info.window(), shape)
-    _check_content(data, valid, info, role, "")
-    to_source = ScaledWindow(0.0, 0.0, info.width / shape[1], info.height / shape[0])
+def _read_whole(info: RasterInfo, bands, max_pixels: int, role: str, window: Optional[Window] = None) -> WorkingImage:
+    window = window or info.window()
+    shape, factor = budget_shape(window.width, window.height, max_pixels)
+    data, valid = read_image(info, bands, window, shape)
+    _check_content(data, valid, info, role, "" if window == info.window() else " in the search area")
+    to_source = ScaledWindow(window.col_off, window.row_off, window.width / shape[1], window.height / shape[0])
     return WorkingImage(data, valid, to_source, info, bands, factor)
+
+
+def _search_window(reference: RasterInfo, extent: str) -> Window:
+    """The reference's pixels inside the search area ``extent`` (whole pixels, clipped to the raster)."""
+    from ..extent import bounds_in, parse_extent
+
+    area = parse_extent(extent)
+    crs = reference.crs.to_wkt() if reference.crs else None
+    x0, y0, x1, y1 = bounds_in(area, crs, crs)
+    window = _window_of(box(x0, y0, x1, y1), reference, None, 0)
+    px = map_to_pixel(reference.transform, [(x0, y0), (x1, y1)])
+    if px[:, 0].max() <= 0 or px[:, 1].max() <= 0 or px[:, 0].min() >= reference.width or \
+            px[:, 1].min() >= reference.height:
+        raise NoOverlapError(f"The search area {area.text()} does not overlap the reference raster '{reference.path}'.")
+    return window
 
 
 MIN_SIDE_PX = 16  # smaller than a matching window of any method

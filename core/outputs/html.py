@@ -113,6 +113,9 @@ padding:10px 14px;margin:12px 0}
 def _page(result, ref: Preview, tgt: Preview, warped: np.ndarray, warped_ok: np.ndarray,
           outputs: Mapping[str, str], written: datetime) -> str:
     name_t, name_r = os.path.basename(result.target.path), os.path.basename(result.reference.path)
+    service = result.reference_service
+    if service:
+        name_r = f"{service['service']} (zoom {service['zoom']}, {service['fetch']['requests']} requests)"
     scale = map_scale(result)
     parts = [
         "<!DOCTYPE html><html lang=en><head><meta charset=utf-8>",

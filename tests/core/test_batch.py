@@ -314,7 +314,7 @@ def test_only_a_verified_pair_carries_an_error_bound(tmp_path, demo_pair, monkey
     def silent_failure(*args, **kwargs):
         raise ValueError()
 
-    monkeypatch.setattr(importlib.import_module("hamta.core.run"), "run", silent_failure)
+    monkeypatch.setattr(importlib.import_module("hamta.core.runner"), "run", silent_failure)
     other = jobs_for_targets([demo_pair["target"]], demo_pair["reference"], str(tmp_path / "other"))[0]
     record = register_job(other, SIFT)
     assert (record["status"], record["message"], record["error_bound_px"]) == ("failed", "ValueError", None)

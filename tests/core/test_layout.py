@@ -152,14 +152,16 @@ def test_lint_passes_in_a_clone_named_hamta(tmp_path):
 # import each other.
 LAYERS = (
     ("core.version", "core.errors", "core.coords", "core.types", "core.outcome"),
+    ("core.extent",),
     ("core.options", "core.progress"),
-    ("core.io", "core.preprocess", "core.detectors", "core.estimation"),
+    ("core.io", "core.preprocess", "core.detectors", "core.estimation", "core.basemap"),
     ("core.descriptors",),
     ("core.matching",),
     ("core.refine", "core.verify"),
     ("core.local", "core.methods", "core.auto", "core.result"),
     ("core.pipeline", "core.mapping", "core.outputs"),
-    ("core.run",),
+    ("core.remote",),
+    ("core.runner",),
     ("core.batch",),
     ("core",),
     ("bench", "processing"),

@@ -70,6 +70,12 @@ class Iface:
     def messageBar(self):
         return self.bar
 
+    def mainWindow(self):
+        return None
+
+    def __getattr__(self, name):  # addToolBarIcon, addPluginToRasterMenu, ... and their removal: no-ops
+        return lambda *args: None
+
 
 import hamta  # noqa: E402
 

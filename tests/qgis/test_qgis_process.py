@@ -65,3 +65,14 @@ def test_qgis_process_reports_bad_input(qgis_env, demo_pair, tmp_path):
                          f"REFERENCE={demo_pair['target']}", "TARGET_GEOREF=1", f"OUTPUT={tmp_path / 'o.tif'}")
     assert proc.returncode == 1
     assert "has no georeferencing" in proc.stderr and not (tmp_path / "o.tif").exists()
+
+
+def test_qgis_process_takes_an_xyz_layer_and_an_extent(qgis_env, xyz_source, crop, search_area, tmp_path):
+    target, extent = crop[0], search_area
+    env = dict(qgis_env, HAMTA_CACHE=str(tmp_path / "cache"))
+    proc = subprocess.run([QGIS_PROCESS, "--json", "run", "hamta:registerauto", "--", f"TARGET={target}",
+                           f"REFERENCE=wms://{xyz_source}", f"EXTENT={extent}",
+                           f"OUTPUT={tmp_path / 'reg.tif'}"], env=env, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["results"]["VERDICT"] == "verified"
+    assert (tmp_path / "reg.tif").is_file()

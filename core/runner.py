@@ -20,6 +20,7 @@ from .outputs.atomic import check_creatable_folder
 from .outputs.tags import verdict_text
 from .pipeline import register
 from .progress import Monitor
+from .remote import parse_service, register_remote
 from .result import RegistrationResult
 
 REGISTER_SHARE = 0.8
@@ -27,10 +28,12 @@ REGISTER_SHARE = 0.8
 
 def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str = AUTO, params=None,
         options: RegisterOptions = RegisterOptions(), output: OutputOptions = OutputOptions(),
-        accept_unverified: bool = False, progress=None, is_canceled=None, map_chunks=None
+        accept_unverified: bool = False, progress=None, is_canceled=None, map_chunks=None, fetcher=None
         ) -> Tuple[RegistrationResult, Dict[str, str]]:
     """Register ``target`` onto ``reference`` (see :func:`hamta.core.register`, which also explains
-    ``map_chunks``) and write ``paths``.
+    ``map_chunks``) and write ``paths``. A ``reference`` naming a map service (a tile-URL template, a
+    QGIS XYZ or WMS layer source) is read through ``fetcher`` (a :class:`hamta.core.remote.Fetcher`;
+    by default one with the user's disk cache), see :mod:`hamta.core.remote`.
 
     Returns
     -------
@@ -48,12 +51,18 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
             raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
     else:
         get_method(method).make_params(params)  # a wrong name or parameter fails before any work
+    service = parse_service(reference)
     if paths is not None and paths.as_dict():
-        check_destinations(paths, [open_raster(target, "target"), open_raster(reference, "reference")])
+        inputs = [open_raster(target, "target")] + ([] if service else [open_raster(reference, "reference")])
+        check_destinations(paths, inputs)
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
     stage = monitor.span(0.0, share)
-    result = register(target, reference, method=method, params=params, options=options,
-                      progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled, map_chunks=map_chunks)
+    if service is not None:
+        result = register_remote(target, service, options, stage, fetcher=fetcher, method=method, params=params,
+                                 map_chunks=map_chunks)
+    else:
+        result = register(target, reference, method=method, params=params, options=options,
+                          progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled, map_chunks=map_chunks)
     if share == 1.0:
         return result, {}
     stage = monitor.span(share, 1.0)

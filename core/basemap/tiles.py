@@ -1,0 +1,127 @@
+"""Reading an area of a tiled map service at one zoom level into a local GeoTIFF.
+
+The GeoTIFF (RGBA, the alpha band marking where the service had no data) is written once per
+(service, zoom, tile range) under the cache folder and then read like any reference file; a
+rerun over the same area reuses it without a request.
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+import tempfile
+from dataclasses import dataclass
+from typing import Tuple
+
+import numpy as np
+
+from ..errors import InputError
+from .fetch import Fetcher, ServiceError, host
+from .services import TileService
+
+Bounds = Tuple[float, float, float, float]  # xmin, ymin, xmax, ymax in the service's grid CRS
+
+
+@dataclass(frozen=True)
+class TileRange:
+    """Tiles ``x0..x1``, ``y0..y1`` (inclusive) of zoom ``z``."""
+
+    z: int
+    x0: int
+    y0: int
+    x1: int
+    y1: int
+
+    @property
+    def count(self) -> int:
+        return (self.x1 - self.x0 + 1) * (self.y1 - self.y0 + 1)
+
+
+def tile_range(service: TileService, bounds: Bounds, z: int) -> TileRange:
+    """The tiles of zoom ``z`` covering ``bounds``, clipped to the grid."""
+    (ox, oy), size = service.origin(), service.resolution(z) * service.tile_px
+    cols, rows = service.tile_count(z)
+    x0 = int(math.floor((bounds[0] - ox) / size))
+    x1 = int(math.ceil((bounds[2] - ox) / size)) - 1
+    y0 = int(math.floor((oy - bounds[3]) / size))
+    y1 = int(math.ceil((oy - bounds[1]) / size)) - 1
+    x0, x1 = max(0, x0), min(cols - 1, max(x0, x1))
+    y0, y1 = max(0, y0), min(rows - 1, max(y0, y1))
+    if x0 > x1 or y0 > y1:
+        raise InputError(f"The search area {_fmt(bounds)} ({service.crs}) lies outside the map service's grid.")
+    return TileRange(z, x0, y0, x1, y1)
+
+
+def fetch_area(service: TileService, tiles: TileRange, fetcher: Fetcher, folder: str, monitor=None) -> str:
+    """Fetch ``tiles`` and write them as one GeoTIFF in ``folder``; its path (reused when present)."""
+    key = hashlib.sha256(f"{service}|{tiles}".encode()).hexdigest()[:24]
+    path = os.path.join(folder, f"area-{key}.tif")
+    if os.path.isfile(path):
+        fetcher.stats.cache_hits += tiles.count  # the area's tiles, from the cache as one file
+        return path
+    urls = [service.tile_url(tiles.z, x, y) for y in range(tiles.y0, tiles.y1 + 1)
+            for x in range(tiles.x0, tiles.x1 + 1)]
+    bodies = fetcher.get_many(urls, monitor)
+    if all(b is None for b in bodies):
+        raise ServiceError(f"The map service at {host(urls[0])} has no data in the search area: each of the "
+                           f"{len(urls)} tiles of zoom {tiles.z} was answered 'HTTP 404 Not Found' or 'HTTP 204 No "
+                           "Content'.")
+    n = service.tile_px
+    mosaic = np.zeros((4, (tiles.y1 - tiles.y0 + 1) * n, (tiles.x1 - tiles.x0 + 1) * n), np.uint8)
+    width = tiles.x1 - tiles.x0 + 1
+    for i, (url, body) in enumerate(zip(urls, bodies)):
+        if body is not None:
+            r, c = divmod(i, width)
+            mosaic[:, r * n:(r + 1) * n, c * n:(c + 1) * n] = _decode(body, n, url)
+    _write(path, mosaic, service, tiles)
+    return path
+
+
+def _decode(body: bytes, n: int, url: str) -> np.ndarray:
+    """A tile's (4, n, n) RGBA pixels; a body that is not an image is the service's error message."""
+    import cv2
+
+    image = cv2.imdecode(np.frombuffer(body, np.uint8), cv2.IMREAD_UNCHANGED)
+    if image is None:
+        text = body[:200].decode("utf-8", "replace").strip().replace("\n", " ")
+        raise ServiceError(f"The map service at {host(url)} sent something that is not an image: '{text}'.")
+    if image.dtype != np.uint8:
+        image = (image / 257).astype(np.uint8) if image.dtype == np.uint16 else image.astype(np.uint8)
+    if image.ndim == 2:
+        image = np.dstack([image, image, image, np.full_like(image, 255)])
+    elif image.shape[2] == 3:
+        image = np.dstack([image[:, :, ::-1], np.full(image.shape[:2], 255, np.uint8)])
+    else:
+        image = np.dstack([image[:, :, 2::-1], image[:, :, 3]])
+    if image.shape[:2] != (n, n):
+        image = cv2.resize(image, (n, n), interpolation=cv2.INTER_AREA)
+    return np.moveaxis(image, 2, 0)
+
+
+def _write(path: str, mosaic: np.ndarray, service: TileService, tiles: TileRange) -> None:
+    """Write the mosaic whole or not at all (a temporary name, then a rename)."""
+    import rasterio
+    from affine import Affine
+    from rasterio.enums import ColorInterp
+
+    res, (ox, oy) = service.resolution(tiles.z), service.origin()
+    size = res * service.tile_px
+    transform = Affine(res, 0, ox + tiles.x0 * size, 0, -res, oy - tiles.y0 * size)
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".part.tif")
+    os.close(fd)
+    try:
+        with rasterio.open(tmp, "w", driver="GTiff", width=mosaic.shape[2], height=mosaic.shape[1], count=4,
+                           dtype="uint8", crs=service.crs, transform=transform, photometric="RGB", alpha="YES",
+                           tiled=True, compress="deflate") as ds:
+            ds.write(mosaic)
+            ds.colorinterp = [ColorInterp.red, ColorInterp.green, ColorInterp.blue, ColorInterp.alpha]
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+
+
+def _fmt(bounds: Bounds) -> str:
+    return "(" + ", ".join(f"{v:.6g}" for v in bounds) + ")"

@@ -1,0 +1,211 @@
+"""Registering onto a map service (XYZ tiles, WMS): where to look, at which zoom, coarse to fine.
+
+A tile layer covers the world at many zoom levels, so it is never read whole. The area to read is
+
+- for a georeferenced target (its georeferencing used): its footprint plus a margin
+  (``FOOTPRINT_MARGIN``), at the zoom whose pixels match the target's;
+- otherwise the search area (``RegisterOptions.extent``). When the whole area fits the pixel
+  budget at the zoom level found, that read is the reference. A larger area is searched coarse to
+  fine: read at the zoom where it fits the budget, the target is located there, then the target's
+  footprint (plus the margin) is read at the zoom matching the target's pixels, and the target is
+  registered again onto that. The final registration is verified like any other; the coarse one
+  only says where to look.
+
+Each area becomes a local GeoTIFF (EPSG:3857 for XYZ layers) under the cache folder, so outputs
+are in the service's CRS and a rerun fetches nothing.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+
+import numpy as np
+
+from .basemap.fetch import Fetcher, ServiceError
+from .basemap.services import TileService, parse_service
+from .basemap.tiles import fetch_area, tile_range
+from .coords import pixel_to_map, raster_outline
+from .errors import InputError, InsufficientMatchesError
+from .extent import bounds_in, parse_extent
+from .io.raster import open_raster
+from .io.working import footprint
+from .options import RegisterOptions
+from .pipeline import register
+from .progress import Monitor
+
+FOOTPRINT_MARGIN = 0.3  # of the footprint's larger side, each way: georeferencing off by up to a third of it
+LOCATED_MARGIN = 0.1  # the same once the coarse search has located the target (to a coarse pixel or so)
+MIN_AREA_PX = 64  # a search area narrower than this at the finest zoom cannot hold a target
+FINE_STEP = 0.7  # refine at a finer zoom only when the target's pixels are finer than this many coarse pixels
+AREA_SHARE = 7  # the target is first looked for as if it covered 1/7 of the search area: a target covering 1/25
+# to 1/2 of it is then within a factor 2 of that scale, which every method of 'auto' matches across
+
+
+def register_remote(target, service: TileService, options: RegisterOptions, monitor: Monitor, fetcher=None,
+                    **kwargs):
+    """Register ``target`` onto ``service`` (see the module docstring); ``kwargs`` go to
+    :func:`hamta.core.pipeline.register`. The result's ``reference_service`` records the service
+    (without credentials), the zoom levels read and the fetch statistics."""
+    reader = _Reader(service, fetcher or Fetcher())
+    info = open_raster(target, "target")
+    local = dataclasses.replace(options, extent=None)
+
+    def register_onto(path, span, **extra):
+        return register(target, path, options=local, progress=span.report, is_canceled=span.canceled, **extra,
+                        **kwargs)
+
+    notes = []
+    if info.georeferenced and info.crs is not None and options.target_georef != "ignore":
+        bounds = _footprint_bounds(info, service)
+        z = _zoom_in_budget(service, bounds, _pixel_size(info, service), options.max_working_pixels)
+        result = register_onto(reader.read(bounds, z, monitor.span(0.0, 0.15)), monitor.span(0.15, 1.0))
+    elif options.extent is None:
+        raise InputError(f"The target raster '{info.path}' has no usable georeferencing, so Hamta cannot tell where "
+                         f"to look in the map service {service.label}: give a search area (CLI: --extent "
+                         "xmin,ymin,xmax,ymax,EPSG:4326; in QGIS the search area, by default the map canvas).")
+    else:
+        result = _search(info, reader, options, monitor, register_onto, notes)
+    record = {"service": service.label, "kind": service.kind, "crs": service.crs, "zoom": reader.zooms[-1],
+              "zooms_read": reader.zooms, "fetch": reader.fetcher.stats.to_dict()}
+    return dataclasses.replace(result, reference_service=record, notes=notes + list(result.notes))
+
+
+class _Reader:
+    """Reads areas of ``service`` into GeoTIFFs under the fetcher's cache, recording the zooms read."""
+
+    def __init__(self, service: TileService, fetcher: Fetcher):
+        self.service, self.fetcher, self.zooms = service, fetcher, []
+        if fetcher.cache:
+            os.makedirs(fetcher.cache, mode=0o700, exist_ok=True)  # the user's own: others neither read nor plant
+        self.folder = os.path.join(fetcher.cache, "areas") if fetcher.cache else _temporary()
+
+    def read(self, bounds, z: int, monitor: Monitor) -> str:
+        tiles = tile_range(self.service, bounds, z)
+        if tiles.count > self.fetcher.max_requests:
+            raise ServiceError(f"Reading the area at zoom {z} from {self.service.label} needs {tiles.count} tiles, "
+                               f"above the cap of {self.fetcher.max_requests}: choose a smaller search area.")
+        self.zooms.append(z)
+        return fetch_area(self.service, tiles, self.fetcher, self.folder, monitor)
+
+
+def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, register_onto, notes):
+    """Coarse to fine over the search area (see the module docstring); notes say what was searched."""
+    service = reader.service
+    bounds = bounds_in(parse_extent(options.extent), service.crs, "EPSG:4326")
+    _check_area(bounds, service, options.extent)
+    z = _zoom_in_budget(service, bounds, 0.0, options.max_working_pixels)
+    path = reader.read(bounds, z, monitor.span(0.0, 0.1))
+    try:
+        coarse = register_onto(path, monitor.span(0.1, 0.45), target_pixels=_guess_pixels(bounds, service, z))
+    except InsufficientMatchesError as exc:
+        raise InsufficientMatchesError(
+            f"The target raster '{info.path}' was not found in the search area read at zoom {z} "
+            f"({_metres(service, z)} pixels): {str(exc).rstrip('.')}. If the target covers less than about a "
+            "twenty-fifth of the area, give a smaller search area; check that the area holds the target.", exc.found,
+            exc.needed) from None
+    scale = _target_pixel(coarse.model, info)  # coarse reference pixels per target pixel
+    step = int(round(math.log2(1.0 / scale))) if scale < FINE_STEP else 0  # the zoom nearest the target's pixels
+    found = "found" if coarse.verified else "placed, without verification,"
+    notes.append(f"searched {_km(bounds, service)} at zoom {z} ({_metres(service, z)} pixels) for the target at "
+                 f"1/{AREA_SHARE} of the area's size (scales from 1/{2 * AREA_SHARE} to 2/{AREA_SHARE} of it for most "
+                 f"methods); it was {found} with pixels of {scale:.2g} of that zoom's")
+    if min(service.zmax, z + step) <= z:
+        return coarse
+    around = _around(coarse, info)
+    z_fine = _zoom_in_budget(service, around, service.resolution(min(service.zmax, z + step)),
+                             options.max_working_pixels)
+    path = reader.read(around, z_fine, monitor.span(0.45, 0.5))
+    notes.append(f"then registered onto its footprint read at zoom {z_fine} ({_metres(service, z_fine)} pixels)")
+    try:
+        result = register_onto(path, monitor.span(0.5, 1.0))
+    except InsufficientMatchesError as exc:
+        notes.append(f"the registration at zoom {z_fine} found no model ({exc}); the result is the one at zoom {z}")
+        return coarse
+    if not result.verified and coarse.verified:
+        notes.append(f"the registration at zoom {z_fine} did not verify; the result is the one at zoom {z}")
+        return coarse
+    return result
+
+
+def _guess_pixels(bounds, service: TileService, z: int) -> int:
+    """The target's working size when it is searched at zoom ``z``: :data:`AREA_SHARE` of the area."""
+    return int((bounds[2] - bounds[0]) * (bounds[3] - bounds[1]) / service.resolution(z) ** 2 / AREA_SHARE)
+
+
+def _zoom_in_budget(service: TileService, bounds, pixel_size: float, max_pixels: int) -> int:
+    """The finest zoom not finer than ``pixel_size`` (0: any) at which ``bounds`` fits ``max_pixels``."""
+    area = (bounds[2] - bounds[0]) * (bounds[3] - bounds[1])
+    for z in range(service.zmax, service.zmin - 1, -1):
+        res = service.resolution(z)
+        if area / res ** 2 <= max_pixels and (res >= pixel_size * 0.75 or z == service.zmin):
+            return z
+    raise InputError(f"The search area ({_km(bounds, service)}) is too large for {service.label}: even at its "
+                     f"coarsest zoom ({service.zmin}) it exceeds the pixel budget. Give a smaller search area.")
+
+
+def _check_area(bounds, service: TileService, text: str) -> None:
+    finest = service.resolution(service.zmax)
+    if min(bounds[2] - bounds[0], bounds[3] - bounds[1]) < MIN_AREA_PX * finest:
+        raise InputError(f"The search area '{text}' is only {_km(bounds, service)} in {service.crs}, too small to hold "
+                         "a target at the layer's finest zoom. If you gave longitudes and latitudes, add ',EPSG:4326'.")
+
+
+def _footprint_bounds(info, service):
+    from rasterio.crs import CRS
+
+    poly = footprint(info, CRS.from_user_input(service.crs))
+    x0, y0, x1, y1 = poly.bounds
+    pad = FOOTPRINT_MARGIN * max(x1 - x0, y1 - y0)
+    return x0 - pad, y0 - pad, x1 + pad, y1 + pad
+
+
+def _pixel_size(info, service) -> float:
+    from rasterio.crs import CRS
+
+    poly = footprint(info, CRS.from_user_input(service.crs))
+    return math.sqrt(poly.area / (info.width * info.height))
+
+
+def _target_pixel(model, info) -> float:
+    """Reference pixels per target pixel, from the model's mapping of the target's outline."""
+    outline = raster_outline(info.width, info.height, 9, ends=True)
+    mapped = model.apply(outline)
+    from shapely.geometry import Polygon
+
+    area = Polygon(mapped).buffer(0).area
+    return math.sqrt(max(area, 1e-12) / (info.width * info.height))
+
+
+def _around(result, info):
+    """The bounds (map units) of the target's footprint through ``result``, plus :data:`LOCATED_MARGIN`."""
+    xy = pixel_to_map(result.reference.transform, result.model.apply(raster_outline(info.width, info.height, 9,
+                                                                                    ends=True)))
+    (x0, y0), (x1, y1) = np.nanmin(xy, axis=0), np.nanmax(xy, axis=0)
+    pad = LOCATED_MARGIN * max(x1 - x0, y1 - y0)
+    return x0 - pad, y0 - pad, x1 + pad, y1 + pad
+
+
+def _metres(service: TileService, z: int) -> str:
+    unit = "°" if service.crs == "EPSG:4326" else " m"
+    return f"{service.resolution(z):.4g}{unit}"
+
+
+def _km(bounds, service: TileService) -> str:
+    if service.crs == "EPSG:4326":
+        return f"{bounds[2] - bounds[0]:.4g}° x {bounds[3] - bounds[1]:.4g}°"
+    return f"{(bounds[2] - bounds[0]) / 1000:.4g} x {(bounds[3] - bounds[1]) / 1000:.4g} km (map units)"
+
+
+def _temporary() -> str:
+    """A private folder of this process, removed at exit (areas read without a disk cache)."""
+    import atexit
+    import shutil
+    import tempfile
+
+    folder = tempfile.mkdtemp(prefix="hamta-areas-")
+    atexit.register(shutil.rmtree, folder, True)
+    return folder
+
+
+__all__ = ["register_remote", "parse_service", "Fetcher", "ServiceError"]

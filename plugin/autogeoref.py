@@ -1,0 +1,225 @@
+"""The 'Auto-georeference…' dialog: the settings of registering a raster layer onto another layer of
+the project (the basemap on the canvas, by default); :mod:`hamta.plugin.action` runs them.
+
+The dialog proposes everything from what the user is looking at: the target is the selected raster
+layer, the reference the visible basemap (an XYZ/WMS layer, else another visible raster layer), the
+search area the map canvas extent (in the canvas CRS; it is used for a target without
+georeferencing) and a new output folder next to the target.
+"""
+from __future__ import annotations
+
+import dataclasses
+import os
+import tempfile
+from typing import Optional
+
+from qgis.core import (
+    QgsCoordinateReferenceSystem,
+    QgsMapLayerProxyModel,
+    QgsProject,
+    QgsRasterLayer,
+    QgsSettings,
+)
+from qgis.gui import QgsExtentGroupBox, QgsFileWidget, QgsMapLayerComboBox, QgsMessageBar
+from qgis.PyQt.QtCore import QCoreApplication
+from qgis.PyQt.QtWidgets import QCheckBox, QComboBox, QDialog, QDialogButtonBox, QFormLayout, QVBoxLayout
+
+from ..core.options import MODEL, RegisterOptions
+
+SETTINGS = "hamta/autogeoreference/"  # the model and local correction last run (not 'keep unverified': a safeguard)
+
+
+def tr(text: str) -> str:
+    """pylupdate5 files the strings of a module-level ``tr()`` under '@default': they are looked up there."""
+    return QCoreApplication.translate("@default", text)
+
+
+def option_tr(text: str) -> str:
+    """An option's label or help from :mod:`hamta.core.options`, translated as the Processing dialogs show it."""
+    return QCoreApplication.translate("RegisterAlgorithm", text)
+
+
+def is_georeferenced(path: str) -> bool:
+    """Whether the raster file ``path`` has georeferencing the engine uses (a CRS and a geotransform or GCPs)."""
+    try:
+        from ..core.io.raster import open_raster
+
+        info = open_raster(path, "target")
+    except Exception:  # unreadable or no engine: the run says why
+        return False
+    return info.georeferenced and info.crs is not None
+
+
+def default_folder(target: str) -> str:
+    """A new folder for the outputs: ``<target name>_georeferenced`` next to the target (``_2``, ``_3``...
+    when taken), or under the temporary folder when the target's folder cannot be written."""
+    parent, stem = os.path.dirname(os.path.abspath(target)), os.path.splitext(os.path.basename(target))[0]
+    if not os.access(parent, os.W_OK):
+        parent = os.path.join(tempfile.gettempdir(), "hamta")
+    base = os.path.join(parent, f"{stem}_georeferenced")
+    folder, n = base, 1
+    while os.path.exists(folder):
+        n += 1
+        folder = f"{base}_{n}"
+    return folder
+
+
+def basemap(layers, target=None):
+    """The layer to register onto among ``layers`` (visible raster layers, top first): the first map
+    service ('wms' provider: XYZ, WMS, WMTS), else the first other raster layer; never ``target``."""
+    candidates = [layer for layer in layers if isinstance(layer, QgsRasterLayer) and layer is not target]
+    services = [layer for layer in candidates if layer.providerType() == "wms"]
+    return (services or candidates or [None])[0]
+
+
+def visible_layers():
+    """The project's visible layers, top of the layer tree first."""
+    return [node.layer() for node in QgsProject.instance().layerTreeRoot().findLayers()
+            if node.isVisible() and node.layer() is not None]
+
+
+@dataclasses.dataclass(frozen=True)
+class Job:
+    """One registration as the dialog set it: ``extent`` is the search area text
+    ('xmin,ymin,xmax,ymax,EPSG:code', in that CRS) or None."""
+
+    target: str
+    target_name: str
+    reference: QgsRasterLayer
+    extent: Optional[str]
+    folder: str
+    options: RegisterOptions
+    accept_unverified: bool
+
+
+class AutoGeoreferenceDialog(QDialog):
+    """The settings of one run; ``job()`` reads them once the user pressed Run (the dialog accepted)."""
+
+    def __init__(self, iface, parent=None):
+        super().__init__(parent)
+        self.iface = iface
+        self.setWindowTitle(tr("Auto-georeference"))
+        self.bar = QgsMessageBar(self)
+        form = QFormLayout()
+
+        self.target = QgsMapLayerComboBox(self)
+        self.target.setFilters(QgsMapLayerProxyModel.RasterLayer)
+        files = [layer for layer in QgsProject.instance().mapLayers().values() if isinstance(layer, QgsRasterLayer)]
+        self.target.setExceptedLayerList([layer for layer in files if layer.providerType() != "gdal"])
+        active = iface.activeLayer()
+        if isinstance(active, QgsRasterLayer) and active.providerType() == "gdal":
+            self.target.setLayer(active)
+        self.target.setToolTip(tr("The raster file to georeference (a raster layer read by GDAL)."))
+        form.addRow(tr("Target raster"), self.target)
+
+        self.reference = QgsMapLayerComboBox(self)
+        self.reference.setFilters(QgsMapLayerProxyModel.RasterLayer)
+        self.reference.setLayer(basemap(visible_layers(), self.target.currentLayer()))
+        self.reference.setToolTip(tr("The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, "
+                                     "WMTS...) or a raster. The results are in its CRS."))
+        form.addRow(tr("Reference layer"), self.reference)
+
+        self.model = QComboBox(self)
+        for value in MODEL.values:
+            self.model.addItem(option_tr(MODEL.labels[value]), value)
+        self.model.setCurrentIndex(max(0, self.model.findData(QgsSettings().value(SETTINGS + "model", MODEL.default))))
+        form.addRow(option_tr("Transformation"), self.model)
+        local = next(f for f in dataclasses.fields(RegisterOptions) if f.name == "local").metadata["option"]
+        self.local = QCheckBox(option_tr(local.label), self)
+        self.local.setToolTip(option_tr(local.help))
+        self.local.setChecked(QgsSettings().value(SETTINGS + "local", False, type=bool))
+        form.addRow("", self.local)
+
+        self.area = QgsExtentGroupBox(self)
+        self.area.setCheckable(True)
+        self.area.setToolTip(tr("On by default for a target without georeferencing (the map canvas extent). On for "
+                                "a georeferenced target, Hamta ignores the target's georeferencing and searches here."))
+        canvas, output_crs = iface.mapCanvas(), QgsCoordinateReferenceSystem("EPSG:4326")
+        if canvas is not None:
+            crs = canvas.mapSettings().destinationCrs()
+            output_crs = crs if crs.authid() else output_crs  # the text form names the CRS by its code
+            self.area.setOutputCrs(output_crs)
+            self.area.setCurrentExtent(canvas.extent(), crs)
+            self.area.setOutputExtentFromCurrent()
+            self.area.setMapCanvas(canvas)
+        self.area.setTitleBase(tr("Search area, {} (where to look for the target)").format(output_crs.authid()))
+
+        self.folder = QgsFileWidget(self)
+        self.folder.setStorageMode(QgsFileWidget.GetDirectory)
+        self.folder.setToolTip(tr("A folder for the warped raster, the GCPs (GeoPackage and .points) and the "
+                                  "reports; files of an earlier run there are replaced."))
+        self.keep = QCheckBox(tr("Keep unverified result"), self)
+        self.keep.setToolTip(tr("Write the georeferenced raster even when the independent check does not confirm "
+                                "the result (it is then marked NOT VERIFIED)."))
+        form.addRow(tr("Output folder"), self.folder)
+        form.addRow("", self.keep)
+
+        self.buttons = QDialogButtonBox(QDialogButtonBox.Close, self)
+        self.run_button = self.buttons.addButton(tr("Run"), QDialogButtonBox.AcceptRole)
+        self.buttons.accepted.connect(self.check_and_accept)
+        self.buttons.rejected.connect(self.reject)
+        layout = QVBoxLayout(self)
+        layout.addWidget(self.bar)
+        layout.addLayout(form)
+        layout.addWidget(self.area)
+        layout.addStretch(1)
+        layout.addWidget(self.buttons)
+
+        self._folder_for = None  # the target whose default folder the folder field shows
+        self.target.layerChanged.connect(self.target_changed)
+        self.target_changed(self.target.currentLayer())
+        self.resize(620, 0)
+
+    def target_changed(self, layer):
+        """Search area on for a target without georeferencing; the default folder follows the target."""
+        path = layer.source() if layer is not None else ""
+        if layer is not None:
+            self.area.setChecked(not is_georeferenced(path))
+            if self.reference.currentLayer() in (None, layer):
+                self.reference.setLayer(basemap(visible_layers(), layer))
+        if self._folder_for is None or self.folder.filePath() == default_folder(self._folder_for):
+            self.folder.setFilePath(default_folder(path) if path else "")
+            self._folder_for = path or None
+
+    def extent(self):
+        """The search area text ('xmin,ymin,xmax,ymax,EPSG:code', in the box's output CRS), or None
+        when it is off or empty."""
+        if not self.area.isChecked():
+            return None
+        from ..processing.reference import extent_text
+
+        return extent_text(self.area.outputExtent(), self.area.outputCrs())
+
+    def problem(self):
+        """Why the settings cannot run (a sentence), or None."""
+        target, reference = self.target.currentLayer(), self.reference.currentLayer()
+        if target is None:
+            return tr("Choose the raster to georeference (add it to the project first).")
+        if reference is None or reference is target:
+            return tr("Choose a reference layer other than the target: a basemap or a georeferenced raster.")
+        if not self.folder.filePath().strip():
+            return tr("Choose an output folder.")
+        if self.extent() is None and not is_georeferenced(target.source()) and reference.providerType() != "gdal":
+            return tr("'{}' has no georeferencing: turn on the search area (the map canvas extent by default) so "
+                      "that Hamta knows where to look in '{}'.").format(target.name(), reference.name())
+        return None
+
+    def check_and_accept(self):
+        message = self.problem()
+        if message:
+            self.bar.clearWidgets()
+            self.bar.pushWarning(tr("Auto-georeference"), message)
+            return
+        settings = QgsSettings()
+        settings.setValue(SETTINGS + "model", self.model.currentData())
+        settings.setValue(SETTINGS + "local", self.local.isChecked())
+        self.accept()
+
+    def job(self) -> Job:
+        target = self.target.currentLayer()
+        extent = self.extent()
+        ignore = extent is not None and is_georeferenced(target.source())  # the user chose where to look
+        options = RegisterOptions(model=self.model.currentData(), local=self.local.isChecked(), extent=extent,
+                                  target_georef="ignore" if ignore else "auto")
+        return Job(target.source(), target.name(), self.reference.currentLayer(), options.extent,
+                   self.folder.filePath().strip(), options, self.keep.isChecked())

@@ -1,0 +1,70 @@
+"""The background job of 'Auto-georeference…': :func:`hamta.core.run` inside a ``QgsTask``.
+
+``run()`` executes in a worker thread of QGIS's task manager and touches no GUI object: it only
+calls the engine, reports progress with ``setProgress`` and stops when ``isCanceled()``. What
+happened is kept on the task (:attr:`RegisterTask.outcome`); ``finished()`` runs in the main thread
+and hands the task to the ``done`` callback, which shows it.
+"""
+from __future__ import annotations
+
+import traceback
+
+from qgis.core import QgsTask
+from qgis.PyQt.QtCore import QTimer
+
+CANCELED, WRITTEN, UNVERIFIED, FAILED, CRASHED = "canceled", "written", "unverified", "failed", "crashed"
+
+
+class RegisterTask(QgsTask):
+    """Registers ``target`` (a raster file) onto ``reference`` (what the core reads: a file, a tile or
+    map service source, a rendered GeoTIFF) and writes the outputs into ``folder``.
+
+    After ``finished``: ``outcome`` is one of :data:`WRITTEN` (the outputs: verified, or unverified and
+    kept), :data:`UNVERIFIED` (not verified: only the report was written, ``error`` says why),
+    :data:`FAILED` (a :class:`hamta.core.HamtaError` in ``error``), :data:`CRASHED` (a bug:
+    ``error`` and ``trace``) or :data:`CANCELED`. ``result`` and ``written`` ({output: path}) hold
+    what :func:`hamta.core.run` returned.
+    """
+
+    def __init__(self, description, target, reference, folder, options, accept_unverified, done=None):
+        super().__init__(description, QgsTask.CanCancel)
+        self.target, self.reference, self.folder = target, reference, folder
+        self.options, self.accept_unverified = options, accept_unverified
+        self.done = done
+        self.result, self.written, self.error, self.trace = None, {}, None, ""
+        self.outcome = CANCELED
+        self.stage = ""  # the engine's latest stage message
+
+    def run(self):  # the worker thread: no GUI here
+        from ..core import run
+        from ..core.errors import HamtaError, RegistrationCanceled, UnverifiedResult
+        from ..core.outputs import OutputPaths
+
+        try:
+            self.result, self.written = run(self.target, self.reference, OutputPaths.in_folder(self.folder),
+                                            options=self.options, accept_unverified=self.accept_unverified,
+                                            progress=self._progress, is_canceled=self.isCanceled)
+            self.outcome = WRITTEN
+        except RegistrationCanceled:
+            self.outcome = CANCELED
+        except UnverifiedResult as exc:
+            self.outcome, self.error, self.result, self.written = UNVERIFIED, exc, exc.result, exc.written
+        except HamtaError as exc:
+            self.outcome, self.error = FAILED, exc
+        except Exception as exc:  # a bug: shown as one, never lost in the worker thread
+            self.outcome, self.error, self.trace = CRASHED, exc, traceback.format_exc()
+        if self.isCanceled() and self.outcome != WRITTEN:
+            self.outcome = CANCELED
+        return self.outcome == WRITTEN
+
+    def _progress(self, fraction, message=None):
+        self.stage = message or self.stage
+        self.setProgress(100.0 * fraction)
+
+    def finished(self, result):  # the main thread; also after a cancel before run() started
+        """Hand the task to ``done`` on the next turn of the event loop: after the 'Task complete' notice
+        QGIS pushes to its message bar when its window is inactive, which would cover the outcome's."""
+        if self.isCanceled() and self.outcome != WRITTEN:
+            self.outcome = CANCELED
+        if self.done is not None:
+            QTimer.singleShot(0, lambda done=self.done: done(self))

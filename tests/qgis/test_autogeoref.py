@@ -1,0 +1,220 @@
+"""'Auto-georeference…' end to end, offscreen: the plugin's action opens the dialog on the selected raster,
+which proposes the basemap of the canvas (an XYZ layer served locally) and the canvas extent; the task
+registers, and the results land in the project with the message bar saying so."""
+import json
+import os
+import time
+
+import pytest
+from qgis.core import Qgis, QgsApplication, QgsCoordinateReferenceSystem, QgsProject, QgsRasterLayer, QgsRectangle
+from qgis.gui import QgsMapCanvas, QgsMessageBar
+from qgis.PyQt import sip
+from qgis.PyQt.QtWidgets import QAction, QApplication, QMainWindow, QPushButton
+
+AREA = 2.2  # the search area's half side, in target footprints (4.4 x 4.4 footprints, EPSG:3857)
+
+
+class Iface:
+    """The part of QgisInterface the plugin uses, with real widgets; other calls are recorded."""
+
+    def __init__(self):
+        self.window = QMainWindow()
+        self.canvas = QgsMapCanvas(self.window)
+        self.canvas.resize(800, 640)
+        self.bar = QgsMessageBar(self.window)
+        self.georeferencer = QAction("Georeferencer", self.window)
+        self.georeferencer.setObjectName("mActionShowGeoreferencer")
+        self.georeferencer_opened = 0
+        self.georeferencer.triggered.connect(self._opened)
+        self.active, self.calls = None, []
+
+    def _opened(self):
+        self.georeferencer_opened += 1
+
+    def mainWindow(self):  # noqa: N802 (QGIS's names)
+        return self.window
+
+    def mapCanvas(self):  # noqa: N802
+        return self.canvas
+
+    def messageBar(self):  # noqa: N802
+        return self.bar
+
+    def activeLayer(self):  # noqa: N802
+        return self.active
+
+    def __getattr__(self, name):
+        return lambda *args: self.calls.append(name)
+
+
+@pytest.fixture
+def session(qgis_app, xyz_source, crop, tmp_path, monkeypatch):
+    """The plugin loaded on a fake iface; the project holds the basemap and the target (selected), the
+    canvas (EPSG:3857) shows the search area around the target."""
+    from hamta.plugin.plugin import HamtaPlugin
+
+    monkeypatch.setenv("HAMTA_CACHE", str(tmp_path / "cache"))
+    project = QgsProject.instance()
+    project.clear()
+    basemap = QgsRasterLayer(xyz_source, "basemap", "wms")
+    scan = QgsRasterLayer(crop[0], "scan")
+    assert basemap.isValid() and scan.isValid()
+    project.addMapLayers([basemap, scan])
+    iface = Iface()
+    iface.active = scan
+    x0, y0, x1, y1 = crop[1]
+    cx, cy, half_w, half_h = (x0 + x1) / 2, (y0 + y1) / 2, AREA * (x1 - x0), AREA * (y1 - y0)
+    iface.canvas.setDestinationCrs(QgsCoordinateReferenceSystem("EPSG:3857"))
+    iface.canvas.setExtent(QgsRectangle(cx - half_w, cy - half_h, cx + half_w, cy + half_h))
+    plugin = HamtaPlugin(iface)
+    plugin.initGui()
+    yield plugin, iface, basemap, scan
+    plugin.unload()
+    project.clear()
+    sip.delete(iface.window)  # with the dialog, canvas and message bar, now rather than at exit
+
+
+def wait_for_tasks(action, timeout=60.0):
+    end = time.monotonic() + timeout
+    while action.tasks:
+        assert time.monotonic() < end, "the task did not end in time"
+        QgsApplication.processEvents()
+        time.sleep(0.01)
+    QgsApplication.processEvents()
+
+
+def messages(iface):
+    return [(item.level(), item.text(), [b.text() for b in item.findChildren(QPushButton)])
+            for item in iface.bar.items()]
+
+
+def test_one_click_georeferences_the_selected_raster_on_the_basemap(session, monkeypatch):
+    plugin, iface, basemap, scan = session
+    assert {"addToolBarIcon", "addPluginToRasterMenu", "addCustomActionForLayerType"} <= set(iface.calls)
+    plugin.action.trigger()
+    dialog = plugin.autogeoref.dialog
+    assert dialog.isVisible() and dialog.target.currentLayer() is scan
+    assert dialog.reference.currentLayer() is basemap
+    assert dialog.area.isChecked() and dialog.extent().endswith(",EPSG:3857")  # no georeferencing: search the canvas
+    folder = dialog.folder.filePath()
+    assert folder == os.path.join(os.path.dirname(scan.source()), "scan_georeferenced")
+
+    dialog.run_button.click()
+    assert not dialog.isVisible() and len(plugin.autogeoref.tasks) == 1
+    wait_for_tasks(plugin.autogeoref)  # about 8 s here
+
+    layers = {layer.source(): layer for layer in QgsProject.instance().mapLayers().values()}
+    raster, gcps = layers[os.path.join(folder, "registered.tif")], layers[os.path.join(folder, "gcps.gpkg") +
+                                                                          "|layername=gcps"]
+    assert raster.crs().authid() == "EPSG:3857" and gcps.featureCount() >= 3
+    report = json.loads(open(os.path.join(folder, "report.json")).read())
+    assert report["quality"]["verdict"] == "verified", report["quality"]["reasons"]
+    import rasterio
+
+    with rasterio.open(raster.source()) as ds:
+        assert ds.crs.to_epsg() == 3857
+    [(level, text, buttons)] = messages(iface)
+    assert level == Qgis.Success and "verified" in text, text
+    assert buttons == ["Open report", "Open the GCPs in the Georeferencer"]
+
+    opened = []
+    monkeypatch.setattr("hamta.plugin.action.QDesktopServices.openUrl", lambda url: opened.append(url.toLocalFile()))
+    item = iface.bar.items()[0]
+    [report_button, georef_button] = item.findChildren(QPushButton)
+    report_button.click()
+    assert opened == [os.path.join(folder, "report.html")]
+    georef_button.click()
+    points = os.path.join(folder, "gcps.points")
+    assert iface.georeferencer_opened == 1 and QApplication.clipboard().text() == points
+    assert points in iface.bar.currentItem().text() and "Load GCP Points" in iface.bar.currentItem().text()
+
+
+def test_the_reference_is_the_visible_basemap(session, landsat):
+    plugin, iface, basemap, scan = session
+    other = QgsRasterLayer(landsat[0], "landsat")  # a georeferenced raster above the basemap
+    QgsProject.instance().addMapLayer(other)
+    plugin.action.trigger()
+    assert plugin.autogeoref.dialog.reference.currentLayer() is basemap
+    plugin.autogeoref.dialog.close()
+    QgsProject.instance().layerTreeRoot().findLayer(basemap.id()).setItemVisibilityChecked(False)
+    plugin.action.trigger()
+    assert plugin.autogeoref.dialog.reference.currentLayer() is other
+    assert plugin.autogeoref.dialog.target.exceptedLayerList() == [basemap]  # a target is a file
+    plugin.autogeoref.dialog.close()
+
+
+def test_cancel_adds_nothing(session):
+    plugin, iface, basemap, scan = session
+    before = set(QgsProject.instance().mapLayers())
+    plugin.action.trigger()
+    folder = plugin.autogeoref.dialog.folder.filePath()
+    plugin.autogeoref.dialog.run_button.click()
+    [task] = plugin.autogeoref.tasks
+    end = time.monotonic() + 20
+    while task.progress() == 0 and time.monotonic() < end:  # the engine is at work: it must stop on its own
+        QgsApplication.processEvents()
+        time.sleep(0.005)
+    assert task.status() == task.Running
+    task.cancel()
+    wait_for_tasks(plugin.autogeoref)
+    assert task.outcome == "canceled"
+    assert set(QgsProject.instance().mapLayers()) == before
+    assert not os.path.exists(os.path.join(folder, "registered.tif"))
+    [(level, text, _)] = messages(iface)
+    assert level == Qgis.Info and "canceled" in text
+
+
+def test_without_georeferencing_nor_search_area_it_says_what_to_do(session):
+    plugin, iface, basemap, scan = session
+    plugin.action.trigger()
+    dialog = plugin.autogeoref.dialog
+    dialog.area.setChecked(False)
+    dialog.run_button.click()  # refused in the dialog, which stays open
+    assert dialog.isVisible() and not plugin.autogeoref.tasks
+    [item] = dialog.bar.items()
+    assert "no georeferencing" in item.text() and "search area" in item.text()
+
+    task = plugin.autogeoref.start(dialog.job())  # the engine says the same if asked anyway
+    wait_for_tasks(plugin.autogeoref)
+    assert task is not None
+    [(level, text, _)] = messages(iface)
+    assert level == Qgis.Critical and "search area" in text and "scan.png" in text, text
+    dialog.close()
+
+
+def test_a_georeferenced_target_is_searched_where_it_says_unless_told_otherwise(session, landsat):
+    plugin, iface, basemap, scan = session
+    source = QgsRasterLayer(landsat[0], "landsat")
+    QgsProject.instance().addMapLayer(source)
+    iface.active = source
+    plugin.action.trigger()
+    dialog = plugin.autogeoref.dialog
+    assert dialog.target.currentLayer() is source and dialog.reference.currentLayer() is basemap
+    assert not dialog.area.isChecked() and dialog.problem() is None
+    job = dialog.job()
+    assert job.extent is None and job.options.target_georef == "auto" and job.options.model == "affine"
+    dialog.area.setChecked(True)  # the user says where to look: the target's own georeferencing is set aside
+    assert dialog.job().options.target_georef == "ignore"
+    dialog.reference.setLayer(source)
+    assert "other than the target" in dialog.problem()
+    dialog.close()
+
+
+def test_an_unverified_result_or_a_bug_is_said_plainly(session, tmp_path):
+    from types import SimpleNamespace
+
+    plugin, iface, basemap, scan = session
+    job = SimpleNamespace(target_name="scan", folder=str(tmp_path))
+    verification = SimpleNamespace(reasons=["3 of 25 sites agree", "no better than chance"], verified=False)
+    unverified = SimpleNamespace(outcome="unverified", job=job, written={"html": str(tmp_path / "report.html")},
+                                 result=SimpleNamespace(verification=verification), error=None)
+    plugin.autogeoref.show_outcome(unverified)
+    [(level, text, buttons)] = messages(iface)
+    assert level == Qgis.Warning and "did not confirm it (3 of 25 sites agree; no better than chance)" in text
+    assert buttons == ["Open report"] and not QgsProject.instance().mapLayersByName("scan (georeferenced)")
+    iface.bar.clearWidgets()
+    crashed = SimpleNamespace(outcome="crashed", job=job, written={}, result=None, error=KeyError("x"),
+                              trace="Traceback ...")
+    plugin.autogeoref.show_outcome(crashed)
+    [(level, text, buttons)] = messages(iface)
+    assert level == Qgis.Critical and "unexpected error (KeyError: 'x')" in text and not buttons
