@@ -6,8 +6,9 @@
   (a flat-coloured, outlined rendering standing in for a street map: a cross-modal reference);
 - ``/wms?…REQUEST=GetMap…`` — the same ``photo`` rendering for any BBOX, WIDTH and HEIGHT
   (SRS EPSG:3857);
-- faults: ``/missing/…`` answers 404 to every tile, ``/broken/…`` 500, ``/slow/…`` waits
-  ``slow_s`` seconds before answering.
+- faults: ``/missing/…`` answers 404 to every tile, ``/holes/…`` to every third, ``/broken/…`` 500,
+  ``/html/…`` an HTML page with status 200, ``/flaky/…`` 503 the first time each tile is asked
+  for, ``/slow/…`` waits ``slow_s`` seconds before answering.
 
 Tiles outside the raster are transparent. ``requests`` counts what was served. Nothing here is
 imported by the product.
@@ -37,6 +38,8 @@ class TileServer:
         self.zmax = zmax
         self.requests = 0
         self._lock = threading.Lock()
+        self._asked = {}  # tile -> times asked, for 'flaky'
+
         with rasterio.open(raster) as ds:
             self._bands = ds.read([1, 2, 3])
             self._valid = ds.read_masks(1) > 0
@@ -97,9 +100,19 @@ class TileServer:
             return _send(handler, 404, b"no such tile", "text/plain")
         if style == "broken":
             return _send(handler, 500, b"internal error", "text/plain")
+        if style == "html":
+            return _send(handler, 200, b"<html><body>Rate limit exceeded</body></html>", "text/html")
+        if style == "holes" and (x + y) % 3 == 0:
+            return _send(handler, 404, b"no such tile", "text/plain")
+        if style == "flaky":
+            with self._lock:
+                self._asked[(z, x, y)] = self._asked.get((z, x, y), 0) + 1
+                first = self._asked[(z, x, y)] == 1
+            if first:
+                return _send(handler, 503, b"busy", "text/plain")
         if style == "slow":
             time.sleep(self.slow_s)
-            style = "photo"
+        style = "map" if style == "map" else "photo"
         size = 2 * HALF_WORLD / 2 ** z
         bbox = [-HALF_WORLD + x * size, HALF_WORLD - (y + 1) * size, -HALF_WORLD + (x + 1) * size,
                 HALF_WORLD - y * size]

@@ -319,7 +319,7 @@ def _joined_values(argv: List[str]) -> List[str]:
     """``--extent -8.9,...`` as ``--extent=-8.9,...``: argparse takes a value starting with '-' for a flag."""
     out = []
     for item in argv:
-        if out and out[-1] in ("--extent", "--resolution") and item[:1] == "-" and item[1:2].isdigit():
+        if out and out[-1] == "--extent" and item[:1] == "-" and item[1:2].isdigit():
             out[-1] = f"{out[-1]}={item}"
         else:
             out.append(item)

@@ -11,8 +11,9 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
   registered again onto that. The final registration is verified like any other; the coarse one
   only says where to look.
 
-Each area becomes a local GeoTIFF (EPSG:3857 for XYZ layers) under the cache folder, so outputs
-are in the service's CRS and a rerun fetches nothing.
+Each area becomes a local GeoTIFF in the service's CRS (EPSG:3857 for XYZ layers) under the cache
+folder (a private temporary folder without one), so outputs are in the service's CRS and a rerun
+fetches nothing.
 """
 from __future__ import annotations
 
@@ -23,7 +24,7 @@ import os
 import numpy as np
 
 from .basemap.fetch import Fetcher, ServiceError
-from .basemap.services import TileService, parse_service
+from .basemap.services import TileService
 from .basemap.tiles import fetch_area, tile_range
 from .coords import pixel_to_map, raster_outline
 from .errors import InputError, InsufficientMatchesError
@@ -56,8 +57,8 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
                         **kwargs)
 
     notes = []
-    if info.georeferenced and info.crs is not None and options.target_georef != "ignore":
-        bounds = _footprint_bounds(info, service)
+    if uses_georeferencing(info, options):
+        bounds = footprint_bounds(info, service.crs)
         z = _zoom_in_budget(service, bounds, _pixel_size(info, service), options.max_working_pixels)
         result = register_onto(reader.read(bounds, z, monitor.span(0.0, 0.15)), monitor.span(0.15, 1.0))
     elif options.extent is None:
@@ -65,10 +66,24 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
                          f"to look in the map service {service.label}: give a search area (CLI: --extent "
                          "xmin,ymin,xmax,ymax,EPSG:4326; in QGIS the search area, by default the map canvas).")
     else:
-        result = _search(info, reader, options, monitor, register_onto, notes)
-    record = {"service": service.label, "kind": service.kind, "crs": service.crs, "zoom": reader.zooms[-1],
-              "zooms_read": reader.zooms, "fetch": reader.fetcher.stats.to_dict()}
+        result, z = _search(info, reader, options, monitor, register_onto, notes)
+    record = {"service": service.label, "id": service.id, "kind": service.kind, "crs": service.crs,
+              "zoom": z, "zooms_read": reader.zooms, "fetch": reader.fetcher.stats.to_dict()}
     return dataclasses.replace(result, reference_service=record, notes=notes + list(result.notes))
+
+
+def uses_georeferencing(info, options: RegisterOptions) -> bool:
+    """Whether the target's own georeferencing says where to look (else the search area must)."""
+    return info.georeferenced and info.crs is not None and options.target_georef != "ignore"
+
+
+def footprint_bounds(info, crs: str):
+    """The bounds of the target's footprint in ``crs`` plus :data:`FOOTPRINT_MARGIN` each way (map units)."""
+    from rasterio.crs import CRS
+
+    x0, y0, x1, y1 = footprint(info, CRS.from_user_input(crs)).bounds
+    pad = FOOTPRINT_MARGIN * max(x1 - x0, y1 - y0)
+    return x0 - pad, y0 - pad, x1 + pad, y1 + pad
 
 
 class _Reader:
@@ -77,7 +92,7 @@ class _Reader:
     def __init__(self, service: TileService, fetcher: Fetcher):
         self.service, self.fetcher, self.zooms = service, fetcher, []
         if fetcher.cache:
-            os.makedirs(fetcher.cache, mode=0o700, exist_ok=True)  # the user's own: others neither read nor plant
+            os.makedirs(fetcher.cache, mode=0o700, exist_ok=True)  # made private; an existing folder is as it is
         self.folder = os.path.join(fetcher.cache, "areas") if fetcher.cache else _temporary()
 
     def read(self, bounds, z: int, monitor: Monitor) -> str:
@@ -90,10 +105,10 @@ class _Reader:
 
 
 def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, register_onto, notes):
-    """Coarse to fine over the search area (see the module docstring); notes say what was searched."""
+    """Coarse to fine over the search area (see the module docstring); the result and the zoom it was
+    registered onto. ``notes`` get what was searched."""
     service = reader.service
-    bounds = bounds_in(parse_extent(options.extent), service.crs, "EPSG:4326")
-    _check_area(bounds, service, options.extent)
+    bounds = _search_bounds(options.extent, service)
     z = _zoom_in_budget(service, bounds, 0.0, options.max_working_pixels)
     path = reader.read(bounds, z, monitor.span(0.0, 0.1))
     try:
@@ -101,31 +116,31 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     except InsufficientMatchesError as exc:
         raise InsufficientMatchesError(
             f"The target raster '{info.path}' was not found in the search area read at zoom {z} "
-            f"({_metres(service, z)} pixels): {str(exc).rstrip('.')}. If the target covers less than about a "
+            f"({_pixel_text(service, z)} pixels): {str(exc).rstrip('.')}. If the target covers less than about a "
             "twenty-fifth of the area, give a smaller search area; check that the area holds the target.", exc.found,
             exc.needed) from None
     scale = _target_pixel(coarse.model, info)  # coarse reference pixels per target pixel
     step = int(round(math.log2(1.0 / scale))) if scale < FINE_STEP else 0  # the zoom nearest the target's pixels
     found = "found" if coarse.verified else "placed, without verification,"
-    notes.append(f"searched {_km(bounds, service)} at zoom {z} ({_metres(service, z)} pixels) for the target at "
-                 f"1/{AREA_SHARE} of the area's size (scales from 1/{2 * AREA_SHARE} to 2/{AREA_SHARE} of it for most "
-                 f"methods); it was {found} with pixels of {scale:.2g} of that zoom's")
+    notes.append(f"searched {_size_text(bounds, service)} at zoom {z} ({_pixel_text(service, z)} pixels) for the "
+                 f"target at 1/{AREA_SHARE} of the area's size (scales from 1/{2 * AREA_SHARE} to 2/{AREA_SHARE} of "
+                 f"it for most methods); it was {found} with pixels of {scale:.2g} of that zoom's")
     if min(service.zmax, z + step) <= z:
-        return coarse
+        return coarse, z
     around = _around(coarse, info)
     z_fine = _zoom_in_budget(service, around, service.resolution(min(service.zmax, z + step)),
                              options.max_working_pixels)
     path = reader.read(around, z_fine, monitor.span(0.45, 0.5))
-    notes.append(f"then registered onto its footprint read at zoom {z_fine} ({_metres(service, z_fine)} pixels)")
+    notes.append(f"then registered onto its footprint read at zoom {z_fine} ({_pixel_text(service, z_fine)} pixels)")
     try:
         result = register_onto(path, monitor.span(0.5, 1.0))
     except InsufficientMatchesError as exc:
         notes.append(f"the registration at zoom {z_fine} found no model ({exc}); the result is the one at zoom {z}")
-        return coarse
+        return coarse, z
     if not result.verified and coarse.verified:
         notes.append(f"the registration at zoom {z_fine} did not verify; the result is the one at zoom {z}")
-        return coarse
-    return result
+        return coarse, z
+    return result, z_fine
 
 
 def _guess_pixels(bounds, service: TileService, z: int) -> int:
@@ -134,30 +149,32 @@ def _guess_pixels(bounds, service: TileService, z: int) -> int:
 
 
 def _zoom_in_budget(service: TileService, bounds, pixel_size: float, max_pixels: int) -> int:
-    """The finest zoom not finer than ``pixel_size`` (0: any) at which ``bounds`` fits ``max_pixels``."""
+    """The finest zoom whose pixels are at least 0.75 ``pixel_size`` (0: any) at which ``bounds`` fits
+    ``max_pixels``; the coarsest zoom when none is that coarse."""
     area = (bounds[2] - bounds[0]) * (bounds[3] - bounds[1])
     for z in range(service.zmax, service.zmin - 1, -1):
         res = service.resolution(z)
         if area / res ** 2 <= max_pixels and (res >= pixel_size * 0.75 or z == service.zmin):
             return z
-    raise InputError(f"The search area ({_km(bounds, service)}) is too large for {service.label}: even at its "
+    raise InputError(f"The search area ({_size_text(bounds, service)}) is too large for {service.label}: even at its "
                      f"coarsest zoom ({service.zmin}) it exceeds the pixel budget. Give a smaller search area.")
 
 
-def _check_area(bounds, service: TileService, text: str) -> None:
-    finest = service.resolution(service.zmax)
-    if min(bounds[2] - bounds[0], bounds[3] - bounds[1]) < MIN_AREA_PX * finest:
-        raise InputError(f"The search area '{text}' is only {_km(bounds, service)} in {service.crs}, too small to hold "
-                         "a target at the layer's finest zoom. If you gave longitudes and latitudes, add ',EPSG:4326'.")
-
-
-def _footprint_bounds(info, service):
-    from rasterio.crs import CRS
-
-    poly = footprint(info, CRS.from_user_input(service.crs))
-    x0, y0, x1, y1 = poly.bounds
-    pad = FOOTPRINT_MARGIN * max(x1 - x0, y1 - y0)
-    return x0 - pad, y0 - pad, x1 + pad, y1 + pad
+def _search_bounds(text: str, service: TileService):
+    """The search area in the service's CRS, clipped to its grid; refused when it is too small to hold a
+    target (or its numbers look like metres given without their CRS)."""
+    area = parse_extent(text)
+    if area.crs is None and max(abs(v) for v in area.bounds) > 180:
+        raise InputError(f"The search area '{text}' has no CRS, so it is read as longitudes and latitudes, but its "
+                         "numbers are beyond 180: add the CRS they are in (e.g. ',EPSG:3857' for Web Mercator metres).")
+    x0, y0, x1, y1 = bounds_in(area, service.crs, "EPSG:4326")
+    (ox, oy), tile = service.origin(), service.resolution(0) * service.tile_px
+    x0, x1 = max(x0, ox), min(x1, ox + tile * service.tile_count(0)[0])
+    y0, y1 = max(y0, oy - tile * service.tile_count(0)[1]), min(y1, oy)
+    if min(x1 - x0, y1 - y0) < MIN_AREA_PX * service.resolution(service.zmax):
+        raise InputError(f"The search area '{text}' is only {_size_text((x0, y0, x1, y1), service)} in {service.crs}, "
+                         "too small to hold a target at the layer's finest zoom.")
+    return x0, y0, x1, y1
 
 
 def _pixel_size(info, service) -> float:
@@ -186,12 +203,12 @@ def _around(result, info):
     return x0 - pad, y0 - pad, x1 + pad, y1 + pad
 
 
-def _metres(service: TileService, z: int) -> str:
+def _pixel_text(service: TileService, z: int) -> str:
     unit = "°" if service.crs == "EPSG:4326" else " m"
     return f"{service.resolution(z):.4g}{unit}"
 
 
-def _km(bounds, service: TileService) -> str:
+def _size_text(bounds, service: TileService) -> str:
     if service.crs == "EPSG:4326":
         return f"{bounds[2] - bounds[0]:.4g}° x {bounds[3] - bounds[1]:.4g}°"
     return f"{(bounds[2] - bounds[0]) / 1000:.4g} x {(bounds[3] - bounds[1]) / 1000:.4g} km (map units)"
@@ -208,4 +225,3 @@ def _temporary() -> str:
     return folder
 
 
-__all__ = ["register_remote", "parse_service", "Fetcher", "ServiceError"]

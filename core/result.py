@@ -8,6 +8,7 @@ from typing import List, Optional
 
 import numpy as np
 
+from .basemap.fetch import redact
 from .coords import as_xy, gdal_coefficients, pixel_to_map
 from .estimation.robust import FinalFit
 from .io.raster import RasterInfo
@@ -120,7 +121,7 @@ class RegistrationResult:
 
 
 def _raster_dict(info: RasterInfo) -> dict:
-    return {"path": info.path, "width": info.width, "height": info.height, "count": info.count,
+    return {"path": redact(info.path), "width": info.width, "height": info.height, "count": info.count,
             "dtype": info.dtype, "crs": info.crs.to_wkt() if info.crs else None,
             "collar": None if info.collar is None else {"value": info.collar, "share": round(info.collar_share, 4)},
             "transform": gdal_coefficients(info.transform), "georeferencing": info.georef_source}

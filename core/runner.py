@@ -11,6 +11,7 @@ import os
 from typing import Dict, Optional, Tuple
 
 from .auto import AUTO
+from .basemap.services import parse_service
 from .errors import OutputError, UnverifiedResult
 from .io.raster import input_files, open_raster
 from .methods import get_method
@@ -20,7 +21,7 @@ from .outputs.atomic import check_creatable_folder
 from .outputs.tags import verdict_text
 from .pipeline import register
 from .progress import Monitor
-from .remote import parse_service, register_remote
+from .remote import register_remote
 from .result import RegistrationResult
 
 REGISTER_SHARE = 0.8
@@ -32,7 +33,7 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
         ) -> Tuple[RegistrationResult, Dict[str, str]]:
     """Register ``target`` onto ``reference`` (see :func:`hamta.core.register`, which also explains
     ``map_chunks``) and write ``paths``. A ``reference`` naming a map service (a tile-URL template, a
-    QGIS XYZ or WMS layer source) is read through ``fetcher`` (a :class:`hamta.core.remote.Fetcher`;
+    QGIS XYZ or WMS layer source) is read through ``fetcher`` (a :class:`hamta.core.basemap.fetch.Fetcher`;
     by default one with the user's disk cache), see :mod:`hamta.core.remote`.
 
     Returns

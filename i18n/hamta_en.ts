@@ -4,92 +4,92 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../plugin/action.py" line="52"/>
+        <location filename="../plugin/action.py" line="53"/>
         <source>Hamta cannot run: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="61"/>
+        <location filename="../plugin/action.py" line="62"/>
         <source>The reference layer &apos;{}&apos; could not be read ({}: {}).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="64"/>
+        <location filename="../plugin/action.py" line="65"/>
         <source>Auto-georeference &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="77"/>
+        <location filename="../plugin/action.py" line="78"/>
         <source>Auto-georeference of &apos;{}&apos; canceled; nothing was added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="81"/>
+        <location filename="../plugin/action.py" line="82"/>
         <source>Open the GCPs in the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="87"/>
+        <location filename="../plugin/action.py" line="88"/>
         <source>&apos;{}&apos; was registered, but the independent check did not confirm it ({}). No georeferenced raster was written; see the report, or tick &apos;Keep unverified result&apos; to write it anyway.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="92"/>
+        <location filename="../plugin/action.py" line="93"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="101"/>
+        <location filename="../plugin/action.py" line="102"/>
         <source>{} (georeferenced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="102"/>
+        <location filename="../plugin/action.py" line="103"/>
         <source>{} GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="107"/>
+        <location filename="../plugin/action.py" line="108"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="113"/>
+        <location filename="../plugin/action.py" line="114"/>
         <source>, error within {:.2f} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="114"/>
+        <location filename="../plugin/action.py" line="115"/>
         <source>&apos;{}&apos; is georeferenced, {} GCPs, and verified by an independent check: {} of {} sites agree{}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="116"/>
+        <location filename="../plugin/action.py" line="117"/>
         <source>&apos;{}&apos; is georeferenced but NOT VERIFIED ({}); check it before use.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="116"/>
+        <location filename="../plugin/action.py" line="117"/>
         <source>not checked</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="121"/>
+        <location filename="../plugin/action.py" line="122"/>
         <source>Open report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="130"/>
+        <location filename="../plugin/action.py" line="131"/>
         <source>In the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="130"/>
+        <location filename="../plugin/action.py" line="131"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="131"/>
+        <location filename="../plugin/action.py" line="132"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation type="unfinished"></translation>
     </message>

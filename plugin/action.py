@@ -43,16 +43,17 @@ class AutoGeoreference:
         return self.dialog
 
     def start(self, job):
-        """Prepare the reference (in the main thread: a layer QGIS must render is read here) and start
-        the task; returns it, or None after saying in the message bar why it could not start."""
+        """Prepare the reference (in the main thread: a layer QGIS must render gets its provider cloned
+        here, and is read in the task) and start the task; returns it, or None after saying in the
+        message bar why it could not start."""
         try:
             from ..core.errors import HamtaError
-            from ..processing.reference import reference_source
+            from ..processing.reference import prepare_reference
         except ImportError as exc:  # the engine's packages are missing: the provider's warning says how to fix it
             self.push(tr("Hamta cannot run: {}").format(exc), Qgis.Critical)
             return None
         try:
-            reference = reference_source(job.reference, job.extent, job.target, job.options.max_working_pixels)
+            reference = prepare_reference(job.reference, job.extent, job.target, job.options.max_working_pixels)
         except HamtaError as exc:
             self.push(str(exc), Qgis.Critical)
             return None

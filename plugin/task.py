@@ -17,7 +17,8 @@ CANCELED, WRITTEN, UNVERIFIED, FAILED, CRASHED = "canceled", "written", "unverif
 
 class RegisterTask(QgsTask):
     """Registers ``target`` (a raster file) onto ``reference`` (what the core reads: a file, a tile or
-    map service source, a rendered GeoTIFF) and writes the outputs into ``folder``.
+    map service source; or a :class:`hamta.processing.reference.Rendering` of a layer, written here
+    first) and writes the outputs into ``folder``.
 
     After ``finished``: ``outcome`` is one of :data:`WRITTEN` (the outputs: verified, or unverified and
     kept), :data:`UNVERIFIED` (not verified: only the report was written, ``error`` says why),
@@ -34,6 +35,7 @@ class RegisterTask(QgsTask):
         self.result, self.written, self.error, self.trace = None, {}, None, ""
         self.outcome = CANCELED
         self.stage = ""  # the engine's latest stage message
+        self.feedback = None  # while a layer is read (see _block_feedback)
 
     def run(self):  # the worker thread: no GUI here
         from ..core import run
@@ -41,6 +43,9 @@ class RegisterTask(QgsTask):
         from ..core.outputs import OutputPaths
 
         try:
+            if not isinstance(self.reference, str):
+                self._progress(0.0, "reading the reference layer")
+                self.reference = self.reference.write(self._block_feedback())
             self.result, self.written = run(self.target, self.reference, OutputPaths.in_folder(self.folder),
                                             options=self.options, accept_unverified=self.accept_unverified,
                                             progress=self._progress, is_canceled=self.isCanceled)
@@ -56,6 +61,18 @@ class RegisterTask(QgsTask):
         if self.isCanceled() and self.outcome != WRITTEN:
             self.outcome = CANCELED
         return self.outcome == WRITTEN
+
+    def _block_feedback(self):
+        """A feedback that :meth:`cancel` cancels: the layer's read stops with the task."""
+        from qgis.core import QgsRasterBlockFeedback
+
+        self.feedback = QgsRasterBlockFeedback()
+        return self.feedback
+
+    def cancel(self):
+        if self.feedback is not None:
+            self.feedback.cancel()
+        super().cancel()
 
     def _progress(self, fraction, message=None):
         self.stage = message or self.stage

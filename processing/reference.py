@@ -1,16 +1,17 @@
 """Any QGIS raster layer as the reference: what the core reads for it.
 
 - a GDAL layer (a file, a VRT, a ``/vsicurl/`` COG): its source;
-- an XYZ or WMS layer of the 'wms' provider without stored credentials: its source, which the core
+- an XYZ or WMS layer of the 'wms' provider that :func:`hamta.core.basemap.services.parse_service`
+  reads (no QGIS credentials or headers; a WMS in EPSG:3857 or EPSG:4326): its source, which the core
   reads tile by tile itself (:mod:`hamta.core.remote`: cache, retries, zoom choice, coarse to fine);
-- anything else (WMTS, WCS, ArcGIS services, a layer using a QGIS authentication configuration):
-  the needed area read through the layer's own provider into a GeoTIFF, within the pixel budget.
+- anything else (WMTS, WCS, ArcGIS services, a layer needing QGIS's credentials): the needed area
+  read through the layer's own provider into a GeoTIFF under Hamta's cache, within the pixel budget.
 """
 from __future__ import annotations
 
+import hashlib
 import math
 import os
-import tempfile
 
 from qgis.core import (
     QgsCoordinateReferenceSystem,
@@ -21,72 +22,90 @@ from qgis.core import (
     QgsRectangle,
 )
 
+from ..core.basemap.fetch import default_cache
 from ..core.basemap.services import parse_service
 from ..core.errors import InputError
 from ..core.extent import parse_extent
 from ..core.io.raster import open_raster
-from ..core.io.working import footprint
-
-MARGIN = 0.3  # of the target footprint's larger side, as the core's own reading of map services
 
 
 def reference_source(layer, extent, target: str, max_pixels: int) -> str:
     """What :func:`hamta.core.run` takes as the reference for ``layer`` (``extent``: the search area
-    text, or None)."""
+    text, or None); a layer without a GDAL equivalent is rendered here (see :func:`prepare_reference`)."""
+    prepared = prepare_reference(layer, extent, target, max_pixels)
+    return prepared if isinstance(prepared, str) else prepared.write()
+
+
+def prepare_reference(layer, extent, target: str, max_pixels: int):
+    """The reference text for ``layer``, or a :class:`Rendering` to write in a worker thread (made here,
+    in the layer's thread: it holds a clone of the layer's provider)."""
     provider, source = layer.providerType(), layer.source()
-    if provider == "gdal":
+    if provider == "gdal" or (provider == "wms" and parse_service(source) is not None):
         return source
-    if provider == "wms" and "authcfg=" not in source and parse_service(source) is not None:
-        return source
-    return render_area(layer, _area(layer, extent, target), max_pixels)
+    return Rendering(layer, _area(layer, extent, target), max_pixels)
 
 
 def extent_text(rect, crs) -> str:
-    """The core's search-area text of a QGIS rectangle in ``crs`` (None for an empty one)."""
+    """The core's search-area text of a QGIS rectangle in ``crs`` (None for an empty one); a CRS PROJ
+    cannot name by a code is given as longitude and latitude."""
     if rect is None or rect.isNull() or rect.isEmpty():
         return None
     code = crs.authid() if crs is not None and crs.isValid() else ""
+    if crs is not None and crs.isValid() and not code.startswith(("EPSG:", "ESRI:", "IGNF:")):
+        wgs84 = QgsCoordinateReferenceSystem("EPSG:4326")
+        rect, code = QgsCoordinateTransform(crs, wgs84, QgsProject.instance()).transformBoundingBox(rect), "EPSG:4326"
     return ",".join(f"{v:.10g}" for v in (rect.xMinimum(), rect.yMinimum(), rect.xMaximum(), rect.yMaximum())) + (
         f",{code}" if code else "")
 
 
 def _area(layer, extent, target: str) -> QgsRectangle:
     """The rectangle to read, in the layer's CRS: the search area, else the target's footprint plus a margin."""
+    from ..core.options import RegisterOptions
+    from ..core.remote import footprint_bounds, uses_georeferencing  # the engine: not when QGIS starts
+
     info = open_raster(target, "target")
-    layer_crs = layer.crs()
     if extent is None:
-        if not info.georeferenced or info.crs is None:
+        if not uses_georeferencing(info, RegisterOptions()):
             raise InputError(f"The target raster '{info.path}' has no georeferencing, so Hamta cannot tell which part "
                              f"of the layer '{layer.name()}' to read: give a search area.")
-        from rasterio.crs import CRS
-
-        x0, y0, x1, y1 = footprint(info, CRS.from_user_input(layer_crs.toWkt())).bounds
-        pad = MARGIN * max(x1 - x0, y1 - y0)
-        return QgsRectangle(x0 - pad, y0 - pad, x1 + pad, y1 + pad)
+        return QgsRectangle(*footprint_bounds(info, layer.crs().toWkt()))
     area = parse_extent(extent)
     rect = QgsRectangle(*area.bounds)
     if area.crs:
-        transform = QgsCoordinateTransform(QgsCoordinateReferenceSystem(area.crs), layer_crs, QgsProject.instance())
+        transform = QgsCoordinateTransform(QgsCoordinateReferenceSystem(area.crs), layer.crs(), QgsProject.instance())
         rect = transform.transformBoundingBox(rect)
     return rect
 
 
-def render_area(layer, rect: QgsRectangle, max_pixels: int) -> str:
-    """Write ``rect`` (layer CRS) of ``layer`` into a temporary GeoTIFF at the layer's resolution, or
-    coarser to fit ``max_pixels``; its path. The provider's values are written (a service's images as
-    RGBA), not the layer's styled rendering, whose stretch may hide the data."""
-    provider = layer.dataProvider()
-    res_x = layer.rasterUnitsPerPixelX() if provider.capabilities() & provider.Size else 0
-    scale = math.sqrt(rect.width() * rect.height() / max_pixels)
-    res = max(scale, res_x or 0)
-    cols, rows = max(16, int(rect.width() / res)), max(16, int(rect.height() / res))
-    path = os.path.join(tempfile.mkdtemp(prefix="hamta-layer-"), "reference.tif")
-    pipe = QgsRasterPipe()
-    if not pipe.set(provider.clone()):
-        raise InputError(f"The reference layer '{layer.name()}' cannot be read ({layer.providerType()}).")
-    writer = QgsRasterFileWriter(path)
-    error = writer.writeRaster(pipe, cols, rows, rect, layer.crs(), QgsProject.instance().transformContext())
-    if error != QgsRasterFileWriter.NoError or not os.path.exists(path):
-        raise InputError(f"The reference layer '{layer.name()}' could not be read over the area needed "
-                         f"({layer.providerType()} provider, error {int(error)}).")
-    return path
+class Rendering:
+    """``rect`` (layer CRS) of a layer, at its resolution or coarser to fit ``max_pixels``, to be written
+    into a GeoTIFF under Hamta's cache (reused when the same area is asked again). The provider's values
+    are written (a service's images as RGBA), not the layer's styled rendering, whose stretch may hide
+    the data."""
+
+    def __init__(self, layer, rect: QgsRectangle, max_pixels: int):
+        provider = layer.dataProvider()
+        native = layer.rasterUnitsPerPixelX() if provider.capabilities() & provider.Size else 0
+        res = max(math.sqrt(rect.width() * rect.height() / max_pixels), native or 0)
+        self.cols, self.rows = max(16, int(rect.width() / res)), max(16, int(rect.height() / res))
+        self.provider, self.crs, self.rect = provider.clone(), layer.crs(), rect
+        self.name, self.kind = layer.name(), layer.providerType()
+        key = f"{self.kind}|{layer.source()}|{rect.toString(12)}|{self.cols}x{self.rows}"
+        self.path = os.path.join(default_cache(), "layers", hashlib.sha256(key.encode()).hexdigest()[:24] + ".tif")
+
+    def write(self, feedback=None) -> str:
+        """The GeoTIFF's path (``feedback``: a ``QgsRasterBlockFeedback`` that may cancel)."""
+        if os.path.isfile(self.path):
+            return self.path
+        os.makedirs(os.path.dirname(self.path), mode=0o700, exist_ok=True)
+        tmp = self.path + f".{os.getpid()}.part.tif"
+        pipe = QgsRasterPipe()
+        if not pipe.set(self.provider):
+            raise InputError(f"The reference layer '{self.name}' cannot be read ({self.kind}).")
+        error = QgsRasterFileWriter(tmp).writeRaster(pipe, self.cols, self.rows, self.rect, self.crs,
+                                                    QgsProject.instance().transformContext(), feedback)
+        if error != QgsRasterFileWriter.NoError or not os.path.exists(tmp):
+            raise InputError(f"The reference layer '{self.name}' could not be read over the area needed "
+                             f"({self.kind} provider, error {int(error)}).")
+        os.replace(tmp, self.path)
+        return self.path

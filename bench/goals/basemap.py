@@ -236,7 +236,7 @@ def build(name: str, source: str, folder: str) -> Tuple[TargetCase, Optional[str
 
 def run_unit(unit, config) -> list:
     from ...core import RegisterOptions, run
-    from ...core.remote import Fetcher
+    from ...core.basemap.fetch import Fetcher
     from ..tileserver import TileServer
 
     name, method = unit
@@ -246,15 +246,13 @@ def run_unit(unit, config) -> list:
     _, style, factor, _ = CASES[name]
     options = RegisterOptions(extent=extent)
     cache = tempfile.mkdtemp(prefix="hamta-bench-cache-")
-    previous = os.environ.get("HAMTA_CACHE")
-    os.environ["HAMTA_CACHE"] = cache
     row = {"unit": name, "case": name, "method": method, "reference_style": style, "area_factor": factor,
            "should_fail": name in SHOULD_FAIL, "map_like": name in MAP_LIKE,
            "target_px": [case.shape[1], case.shape[0]]}
     try:
         with TileServer(source, zmax=14) as server:
             for attempt in ("first", "rerun"):
-                fetcher = Fetcher()
+                fetcher = Fetcher(cache=cache)
                 before = server.requests
                 t0 = time.perf_counter()
                 result, error = None, None
@@ -272,10 +270,6 @@ def run_unit(unit, config) -> list:
                     row.update(rerun_s=wall, rerun_requests=server.requests - before,
                                rerun_cache_hits=fetcher.stats.cache_hits)
     finally:
-        if previous is None:
-            os.environ.pop("HAMTA_CACHE", None)
-        else:
-            os.environ["HAMTA_CACHE"] = previous
         shutil.rmtree(cache, ignore_errors=True)
     return [row]
 

@@ -7,7 +7,9 @@ so a rerun or a batch over the same area sends no request. Every failure ends as
 from __future__ import annotations
 
 import hashlib
+import http.client
 import os
+import re
 import socket
 import tempfile
 import threading
@@ -55,10 +57,11 @@ class FetchStats:
 class Fetcher:
     """Fetches URLs for one run.
 
-    ``timeout_s`` bounds each request; a time-out, a reset connection or a status in
-    ``RETRY_STATUS`` is retried ``retries`` times after ``backoff_s``, doubled each time.
-    ``max_requests`` caps the requests of the run (cache hits are free). ``cache`` is a folder
-    (None: no disk cache).
+    ``timeout_s`` bounds each socket operation of a request; a time-out, a broken connection or
+    answer, or a status in ``RETRY_STATUS`` is retried ``retries`` times after ``backoff_s``, doubled
+    each time. ``max_requests`` caps the requests of the run, retries included (cache hits are
+    free). ``cache`` is a folder (None: no disk cache); only answers that ``get_many``'s ``valid``
+    accepts are kept there, so an error page is asked for again next time.
     """
 
     cache: Optional[str] = field(default_factory=default_cache)
@@ -72,10 +75,11 @@ class Fetcher:
     def __post_init__(self):
         self._lock = threading.Lock()
 
-    def get_many(self, urls: Sequence[str], monitor=None) -> List[Optional[bytes]]:
+    def get_many(self, urls: Sequence[str], monitor=None, valid=None) -> List[Optional[bytes]]:
         """The body of each URL (None for a tile the service does not have), in order.
 
-        ``monitor`` (a :class:`hamta.core.progress.Monitor`) gets progress and may cancel.
+        ``monitor`` (a :class:`hamta.core.progress.Monitor`) gets progress and may cancel. ``valid(url,
+        body)`` raises :class:`ServiceError` for a body that is not what was asked for (it is not cached).
         """
         start = time.perf_counter()
         bodies: List[Optional[bytes]] = [None] * len(urls)
@@ -85,37 +89,39 @@ class Fetcher:
             if cached is None:
                 todo.append(i)
             else:
-                bodies[i] = cached or None
+                bodies[i] = cached
                 self.stats.cache_hits += 1
-        if len(todo) > self.max_requests - self.stats.requests:
+        if todo and len(todo) > self.max_requests - self.stats.requests:
             raise ServiceError(f"The map service at {host(urls[todo[0]])} would need {len(todo)} more requests, above "
                                f"the cap of {self.max_requests} per run: choose a smaller search area.")
-        done = len(urls) - len(todo)
-        stop = threading.Event()
-        with ThreadPoolExecutor(max_workers=max(1, self.workers)) as pool:
-            pending = {pool.submit(self._fetch, urls[i], stop): i for i in todo}
-            try:
-                while pending:
-                    finished, _ = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
-                    for future in finished:
-                        bodies[pending.pop(future)] = future.result()
-                        done += 1
-                    if monitor is not None:
-                        monitor.report(done / max(1, len(urls)), "fetching the reference")
-            except BaseException:
-                stop.set()
-                for future in pending:
-                    future.cancel()
-                raise
-        self.stats.seconds += time.perf_counter() - start
+        done, stop = len(urls) - len(todo), threading.Event()
+        pool = ThreadPoolExecutor(max_workers=max(1, self.workers))
+        pending = {pool.submit(self._fetch, urls[i], stop, valid): i for i in todo}
+        try:
+            while pending:
+                finished, _ = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
+                for future in finished:
+                    bodies[pending.pop(future)] = future.result()
+                    done += 1
+                if monitor is not None:
+                    monitor.report(done / max(1, len(urls)), "fetching the reference")
+        except BaseException:
+            stop.set()  # requests in flight end at their time-out; nobody waits for them
+            raise
+        finally:
+            pool.shutdown(wait=not stop.is_set(), cancel_futures=True)
+            self.stats.seconds += time.perf_counter() - start
         return bodies
 
-    def _fetch(self, url: str, stop: threading.Event) -> Optional[bytes]:
+    def _fetch(self, url: str, stop: threading.Event, valid) -> Optional[bytes]:
         delay = self.backoff_s
         for attempt in range(self.retries + 1):
-            if stop.is_set():
-                raise RegistrationCanceled("Registration canceled; no outputs were written.")
             with self._lock:
+                if stop.is_set():
+                    raise RegistrationCanceled("Registration canceled; no outputs were written.")
+                if self.stats.requests >= self.max_requests:
+                    raise ServiceError(f"The map service at {host(url)} was sent the {self.max_requests} requests a "
+                                       "run may send (retries included): choose a smaller search area.")
                 self.stats.requests += 1
             try:
                 body = self._request(url)
@@ -130,17 +136,20 @@ class Fetcher:
             with self._lock:
                 self.stats.bytes += len(body or b"")
                 self.stats.missing += body is None
-            self._store(url, body)
+            if body is not None:
+                if valid is not None:
+                    valid(url, body)
+                self._store(url, body)
             return body
         return None  # not reached
 
     def _request(self, url: str) -> Optional[bytes]:
+        """The body (None for a missing tile: HTTP 204 or 404, or an empty answer)."""
         request = urllib.request.Request(url, headers={"User-Agent": f"Hamta/{__version__} (georeferencing)"})
         try:
             with urllib.request.urlopen(request, timeout=self.timeout_s) as answer:
-                if answer.status in MISSING_STATUS:
-                    return None
-                return answer.read()
+                body = answer.read()
+                return None if answer.status in MISSING_STATUS or not body else body
         except urllib.error.HTTPError as exc:
             if exc.code in MISSING_STATUS:
                 return None
@@ -158,8 +167,8 @@ class Fetcher:
                 raise ServiceError(f"The map service at {host(url)} cannot be reached: the connection was refused "
                                    "(is the server running?).") from None
             raise ServiceError(f"The map service at {host(url)} cannot be reached: {reason}.") from None
-        except (ConnectionError, OSError) as exc:
-            raise _Retry(f"the connection failed ({exc})") from None
+        except (http.client.HTTPException, ConnectionError, OSError) as exc:  # a cut or garbled answer
+            raise _Retry(f"the answer was broken off or garbled ({type(exc).__name__})") from None
 
     def _path(self, url: str) -> Optional[str]:
         if not self.cache:
@@ -168,26 +177,37 @@ class Fetcher:
         return os.path.join(self.cache, "http", digest[:2], digest)
 
     def _cached(self, url: str) -> Optional[bytes]:
-        """The cached body (b'' for a known-missing tile), or None when not cached."""
         path = self._path(url)
         if path is None or not os.path.isfile(path):
             return None
         with open(path, "rb") as f:
-            return f.read()
+            return f.read() or None
 
-    def _store(self, url: str, body: Optional[bytes]) -> None:
+    def forget(self, url: str) -> None:
+        """Drop ``url``'s cached answer (one found unusable)."""
         path = self._path(url)
-        if path is None:
-            return
-        try:
-            os.makedirs(self.cache, mode=0o700, exist_ok=True)  # the user's own: other users neither read nor plant
-            os.makedirs(os.path.dirname(path), exist_ok=True)
-            fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".part")
-            with os.fdopen(fd, "wb") as f:
-                f.write(body or b"")
-            os.replace(tmp, path)
-        except OSError:
-            pass  # a cache that cannot be written only costs a later refetch
+        if path is not None and os.path.isfile(path):
+            os.remove(path)
+
+    def _store(self, url: str, body: bytes) -> None:
+        path = self._path(url)
+        if path is not None:
+            write_whole(path, body)
+
+
+def write_whole(path: str, data: bytes) -> None:
+    """Write ``data`` to ``path`` through a temporary name (a reader never sees part of it); a cache
+    that cannot be written only costs a later refetch."""
+    tmp = None
+    try:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".part")
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except OSError:
+        if tmp is not None and os.path.exists(tmp):
+            os.remove(tmp)
 
 
 class _Retry(Exception):
@@ -200,15 +220,23 @@ def host(url: str) -> str:
     return parts.hostname + (f":{parts.port}" if parts.port else "") if parts.hostname else url
 
 
-def redact(url: str) -> str:
-    """``url`` without user name, password or key-like query values (for messages and reports)."""
+SECRET_KEYS = frozenset((
+    "key", "token", "apikey", "api_key", "access_token", "access_key", "password", "passwd", "signature", "sig",
+    "x-amz-signature", "x-amz-credential", "x-amz-security-token", "app_code", "client_id", "client_secret",
+    "subscription-key"))
+
+
+def redact(text: str) -> str:
+    """``text`` (a URL, or a GDAL string holding one: ``/vsicurl/https://…``, ``WMTS:https://…``) without
+    user name, password or key-like query values, for messages and reports; other text unchanged."""
     from urllib.parse import parse_qsl, urlencode, urlunsplit
 
+    found = re.search(r"(https?|ftp)://", text)
+    if found is None:
+        return text
+    prefix, url = text[:found.start()], text[found.start():]
     parts = urlsplit(url)
-    netloc = parts.hostname or ""
-    if parts.port:
-        netloc += f":{parts.port}"
-    secret = ("key", "token", "apikey", "api_key", "access_token", "password", "passwd", "signature", "sig")
-    query = [(k, "***" if k.lower() in secret else v) for k, v in parse_qsl(parts.query, keep_blank_values=True)]
+    netloc = (parts.hostname or "") + (f":{parts.port}" if parts.port else "")
+    query = [(k, "***" if k.lower() in SECRET_KEYS else v) for k, v in parse_qsl(parts.query, keep_blank_values=True)]
     text = urlunsplit((parts.scheme, netloc, parts.path, urlencode(query, safe="{}/,:*"), ""))
-    return text.replace("%7B", "{").replace("%7D", "}")
+    return prefix + text.replace("%7B", "{").replace("%7D", "}")

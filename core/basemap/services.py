@@ -12,10 +12,9 @@ A reference given as text is one of:
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Optional, Tuple
-from urllib.parse import parse_qsl, urlencode, urlsplit
+from urllib.parse import parse_qsl, urlencode
 
 from ..errors import InputError
 from .fetch import redact
@@ -48,6 +47,13 @@ class TileService:
     image_format: str = "image/png"
 
     @property
+    def id(self) -> str:
+        """A digest of the whole definition, credentials included (to recognise the same service again)."""
+        import hashlib
+
+        return hashlib.sha256(repr(self).encode()).hexdigest()[:16]
+
+    @property
     def label(self) -> str:
         """The service as a user would recognise it, without credentials."""
         text = redact(self.url)
@@ -77,28 +83,33 @@ class TileService:
         return self.url + ("&" if "?" in self.url else "?") + urlencode(query, safe=",:/")
 
 
+AUTH_KEYS = ("authcfg", "username", "password", "http-header:", "referer")  # QGIS sends these; Hamta cannot
+
+
 def parse_service(text) -> Optional[TileService]:
-    """The :class:`TileService` ``text`` describes, or None when GDAL should open it as a file."""
+    """The :class:`TileService` ``text`` describes, or None when it is not one Hamta reads itself: a file
+    or GDAL string, a WMTS or WCS layer, a WMS whose CRS is neither EPSG:3857 nor EPSG:4326, or a layer
+    that needs QGIS's credentials or headers (in QGIS such layers are read through their provider)."""
     text = str(text).strip()
     if text.startswith(("http://", "https://")) and "{z}" in text and "{x}" in text:
         return _checked(TileService("xyz", _template(text)), text)
     if "url=" not in text or text.startswith(("/", "<")):
         return None
-    fields = dict(parse_qsl(text, keep_blank_values=True))
+    pairs = parse_qsl(text, keep_blank_values=True)
+    fields = {}
+    for key, value in pairs:  # QGIS repeats 'layers' and 'styles' for a WMS of several layers
+        fields[key] = f"{fields[key]},{value}" if key in ("layers", "styles") and key in fields else value
     url = fields.get("url", "")
-    if not url.startswith(("http://", "https://")):
+    if not url.startswith(("http://", "https://")) or any(k.lower().startswith(AUTH_KEYS) for k, _ in pairs):
         return None
     if fields.get("type") == "xyz":
         service = TileService("xyz", _template(url), zmin=_zoom(fields, "zmin", 0, text),
                               zmax=_zoom(fields, "zmax", 19, text))
         return _checked(service, text)
-    if "layers" in fields and fields.get("SERVICE", fields.get("service", "")).upper() != "WMTS" \
-            and "tileMatrixSet" not in fields:
-        crs = fields.get("crs", WEB_MERCATOR).upper().replace("EPSG:900913", WEB_MERCATOR).replace("CRS:84",
-                                                                                                   "EPSG:4326")
-        return TileService("wms", url, crs=crs if crs in GRIDS else WEB_MERCATOR, zmax=22, tile_px=512,
-                           layers=fields["layers"], styles=fields.get("styles", ""),
-                           image_format=fields.get("format", "image/png"))
+    crs = fields.get("crs", WEB_MERCATOR).upper().replace("EPSG:900913", WEB_MERCATOR).replace("CRS:84", "EPSG:4326")
+    if "layers" in fields and "tileMatrixSet" not in fields and crs in GRIDS:
+        return TileService("wms", url, crs=crs, zmax=22, tile_px=512, layers=fields["layers"],
+                           styles=fields.get("styles", ""), image_format=fields.get("format", "image/png"))
     return None
 
 
@@ -126,18 +137,7 @@ def _checked(service: TileService, text: str) -> TileService:
 
 
 def redact_source(text: str) -> str:
-    """A reference given as text, without credentials (for messages)."""
-    if text.startswith(("http://", "https://")):
-        return redact(text)
-    if "url=" in text:
-        fields = dict(parse_qsl(text, keep_blank_values=True))
-        return redact(fields.get("url", ""))
-    parts = urlsplit(text)
-    return text if not parts.password else text.replace(parts.password, "***")
-
-
-def zoom_for(service: TileService, pixel_size: float) -> int:
-    """The zoom whose pixels are the largest not coarser than ``pixel_size`` (grid CRS units),
-    within the layer's limits."""
-    z = math.ceil(math.log2(service.resolution(0) / pixel_size) - 1e-6)
-    return int(min(max(z, service.zmin), service.zmax))
+    """A reference given as text, without credentials (for messages and reports)."""
+    if "url=" in text and not text.startswith(("http://", "https://", "/")):
+        return redact(dict(parse_qsl(text, keep_blank_values=True)).get("url", ""))
+    return redact(text)

@@ -16,7 +16,7 @@ from typing import Tuple
 import numpy as np
 
 from ..errors import InputError
-from .fetch import Fetcher, ServiceError, host
+from .fetch import Fetcher, ServiceError, host, redact
 from .services import TileService
 
 Bounds = Tuple[float, float, float, float]  # xmin, ymin, xmax, ymax in the service's grid CRS
@@ -61,30 +61,44 @@ def fetch_area(service: TileService, tiles: TileRange, fetcher: Fetcher, folder:
         return path
     urls = [service.tile_url(tiles.z, x, y) for y in range(tiles.y0, tiles.y1 + 1)
             for x in range(tiles.x0, tiles.x1 + 1)]
-    bodies = fetcher.get_many(urls, monitor)
+    bodies = fetcher.get_many(urls, monitor, valid=_image_like)
     if all(b is None for b in bodies):
         raise ServiceError(f"The map service at {host(urls[0])} has no data in the search area: each of the "
-                           f"{len(urls)} tiles of zoom {tiles.z} was answered 'HTTP 404 Not Found' or 'HTTP 204 No "
-                           "Content'.")
+                           f"{len(urls)} tiles of zoom {tiles.z} was answered 'HTTP 404 Not Found', 'HTTP 204 No "
+                           "Content' or empty.")
     n = service.tile_px
     mosaic = np.zeros((4, (tiles.y1 - tiles.y0 + 1) * n, (tiles.x1 - tiles.x0 + 1) * n), np.uint8)
     width = tiles.x1 - tiles.x0 + 1
     for i, (url, body) in enumerate(zip(urls, bodies)):
         if body is not None:
             r, c = divmod(i, width)
-            mosaic[:, r * n:(r + 1) * n, c * n:(c + 1) * n] = _decode(body, n, url)
+            mosaic[:, r * n:(r + 1) * n, c * n:(c + 1) * n] = _decode(body, n, url, fetcher)
+    if not mosaic[3].any():
+        raise ServiceError(f"The map service at {host(urls[0])} has no data in the search area: the {len(urls)} "
+                           f"tiles of zoom {tiles.z} are fully transparent.")
     _write(path, mosaic, service, tiles)
     return path
 
 
-def _decode(body: bytes, n: int, url: str) -> np.ndarray:
-    """A tile's (4, n, n) RGBA pixels; a body that is not an image is the service's error message."""
+IMAGE_MAGIC = (b"\x89PNG", b"\xff\xd8\xff", b"GIF8", b"RIFF", b"II*\x00", b"MM\x00*")  # PNG JPEG GIF WebP TIFF
+
+
+def _image_like(url: str, body: bytes) -> None:
+    """Refuse (before it is cached) an answer that is not an image: the service's error message."""
+    if not body.startswith(IMAGE_MAGIC):
+        text = body[:200].decode("utf-8", "replace").strip().replace("\n", " ")
+        raise ServiceError(f"The map service at {host(url)} sent something that is not an image: '{text}'.")
+
+
+def _decode(body: bytes, n: int, url: str, fetcher: Fetcher) -> np.ndarray:
+    """A tile's (4, n, n) RGBA pixels; one that cannot be decoded is dropped from the cache."""
     import cv2
 
     image = cv2.imdecode(np.frombuffer(body, np.uint8), cv2.IMREAD_UNCHANGED)
     if image is None:
-        text = body[:200].decode("utf-8", "replace").strip().replace("\n", " ")
-        raise ServiceError(f"The map service at {host(url)} sent something that is not an image: '{text}'.")
+        fetcher.forget(url)
+        raise ServiceError(f"The map service at {host(url)} sent an image that cannot be decoded ({len(body)} bytes, "
+                           f"{redact(url)}).")
     if image.dtype != np.uint8:
         image = (image / 257).astype(np.uint8) if image.dtype == np.uint16 else image.astype(np.uint8)
     if image.ndim == 2:

@@ -20,6 +20,8 @@ import time
 from dataclasses import dataclass, replace
 from typing import Optional
 
+from ..basemap.fetch import redact
+from ..basemap.services import parse_service, redact_source
 from ..coords import raster_outline
 from ..errors import HamtaError, MethodCrashed, UnverifiedResult
 from ..options import OutputOptions, RegisterOptions
@@ -72,7 +74,8 @@ def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
         with open(report, encoding="utf-8") as f:
             rep = json.load(f)
         same = (os.path.abspath(rep["target"]["path"]) == job.target
-                and os.path.abspath(rep["reference"]["path"]) == job.reference)
+                and _same_reference(rep["reference"], job.reference)
+                and rep["options"].get("extent") == (job.extent or settings.options.extent))
     except (OSError, ValueError, KeyError, TypeError):
         return None
     if not same:
@@ -80,6 +83,16 @@ def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
     record = from_report(job, job.method or settings.method, rep.get("timings_s", {}).get("total", 0.0), rep)
     record["resumed"] = True
     return record
+
+
+def _same_reference(described: dict, reference: str) -> bool:
+    """Whether ``report.json``'s reference (a file, a GDAL string without credentials, or a map service
+    recognised by its digest) is ``reference``."""
+    service = described.get("service")
+    if service:
+        parsed = parse_service(reference)
+        return parsed is not None and parsed.id == service.get("id")
+    return described["path"] in (reference, redact(reference)) or os.path.abspath(described["path"]) == reference
 
 
 def from_report(job: Job, method: str, seconds: float, rep: Optional[dict] = None) -> dict:
@@ -113,7 +126,8 @@ def failed_record(job: Job, method: str, seconds: float, message: str) -> dict:
 
 
 def _record(job: Job, method: str, status: str, seconds: float, **fields) -> dict:
-    record = {"key": job.key, "name": job.name, "target": job.target, "reference": job.reference, "out": job.out,
+    record = {"key": job.key, "name": job.name, "target": job.target, "reference": redact_source(job.reference),
+              "out": job.out,
               "method": method, "status": status, "time_s": round(float(seconds), 3), "method_used": None,
               "verdict": None, "error_bound_px": None, "rmse_px": None, "n_gcps": None, "outputs": {},
               "footprint": None, "crs": None, "pixel_mode": False, "message": "", "resumed": False}

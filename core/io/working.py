@@ -168,6 +168,9 @@ def _search_window(reference: RasterInfo, extent: str) -> Window:
     from ..extent import bounds_in, parse_extent
 
     area = parse_extent(extent)
+    if reference.crs is None and area.crs is not None:
+        raise InputError(f"The search area {area.text()} names a CRS, but the reference raster '{reference.path}' has "
+                         "none: give the area in its map units (or pixels) without a CRS.")
     crs = reference.crs.to_wkt() if reference.crs else None
     x0, y0, x1, y1 = bounds_in(area, crs, crs)
     window = _window_of(box(x0, y0, x1, y1), reference, None, 0)

@@ -13,7 +13,7 @@ from hamta.bench.goals.basemap import georeferenced_target, rotated_target, zoom
 from hamta.bench.tileserver import TileServer
 from hamta.cli.main import main
 from hamta.core import run
-from hamta.core.basemap.fetch import ServiceError
+from hamta.core.basemap.fetch import Fetcher, ServiceError
 from hamta.core.errors import (
     HamtaError,
     InputError,
@@ -23,7 +23,6 @@ from hamta.core.errors import (
 )
 from hamta.core.options import RegisterOptions
 from hamta.core.outputs import OutputPaths
-from hamta.core.remote import Fetcher
 
 CENTRE = (300.0, 300.0)  # Landsat source px: the island's middle, land and shallow sea around
 
@@ -112,12 +111,12 @@ def _free_port() -> int:
         return s.getsockname()[1]
 
 
-@pytest.mark.parametrize("fault", ["down", "missing", "broken", "slow", "cap"])
+@pytest.mark.parametrize("fault", ["down", "missing", "broken", "html", "slow", "cap"])
 def test_a_service_fault_ends_with_a_message_naming_host_and_status_and_writes_nothing(fault, case, server,
                                                                                           tmp_path):
     port = server.url.rsplit(":", 1)[1]
     fetcher, expected = Fetcher(cache=str(tmp_path / "cache"), retries=1, backoff_s=0.05), None
-    url = server.xyz(fault if fault in ("missing", "broken", "slow") else "photo") + "?token=SECRET"
+    url = server.xyz(fault if fault in ("missing", "broken", "html", "slow") else "photo") + "?token=SECRET"
     if fault == "down":
         port = str(_free_port())
         url = f"http://127.0.0.1:{port}/photo/{{z}}/{{x}}/{{y}}.png?token=SECRET"
@@ -126,6 +125,8 @@ def test_a_service_fault_ends_with_a_message_naming_host_and_status_and_writes_n
         expected = "no data in the search area"
     elif fault == "broken":
         expected = "HTTP 500"
+    elif fault == "html":
+        expected = "not an image: '<html><body>Rate limit exceeded"
     elif fault == "slow":
         fetcher, expected = Fetcher(cache=str(tmp_path / "cache"), timeout_s=0.3, retries=0), "no answer within 0.3 s"
     elif fault == "cap":
@@ -138,6 +139,29 @@ def test_a_service_fault_ends_with_a_message_naming_host_and_status_and_writes_n
     assert isinstance(info.value, ServiceError) and isinstance(info.value, InputError)
     assert f"127.0.0.1:{port}" in message and expected in message and "SECRET" not in message, message
     _nothing_written(out)
+    cached = [f for _, _, files in os.walk(tmp_path / "cache") for f in files]
+    assert fault == "cap" or not cached, cached  # an error page is not kept: a rerun asks again
+
+
+def test_missing_tiles_leave_holes_and_a_busy_server_is_asked_again(case, server, tmp_path):
+    """Every third tile 404 (read as no data), and 503 to each tile's first request (retried)."""
+    for style, retried in (("holes", False), ("flaky", True)):
+        fetcher = Fetcher(cache=str(tmp_path / style), backoff_s=0.01)
+        result, _ = run(case.path, server.xyz(style), None, options=RegisterOptions(extent=case.search_area(3.0)),
+                        fetcher=fetcher)
+        stats = result.reference_service["fetch"]
+        assert result.verified, (style, result.notes)
+        assert (stats["missing"] > 0) != retried and (stats["requests"] > stats["missing"] + 10)
+        if retried:
+            tiles = sum(1 for _, _, files in os.walk(tmp_path / style / "http") for _ in files)
+            assert stats["requests"] == 2 * tiles, (stats, tiles)
+
+
+def test_a_wms_layer_source_is_read_as_getmap_tiles(case, server, tmp_path):
+    source = f"contextualWMSLegend=0&crs=EPSG:3857&format=image/png&layers=photo&styles=&url={server.url}/wms"
+    result, _ = run(case.path, source, None, options=RegisterOptions(extent=case.search_area(3.0)),
+                    fetcher=Fetcher(cache=str(tmp_path / "cache")))
+    assert result.verified and result.reference_service["kind"] == "wms", result.notes
 
 
 def test_a_search_area_that_misses_the_target_is_not_verified(case, server, tmp_path):
@@ -145,8 +169,8 @@ def test_a_search_area_that_misses_the_target_is_not_verified(case, server, tmp_
     extent = case.search_area(3.0, shift=(0.0, -1.0))
     out = str(tmp_path / "out")
     with pytest.raises((UnverifiedResult, InsufficientMatchesError)):
-        run(case.path, server.xyz(), OutputPaths.in_folder(out), options=RegisterOptions(extent=extent),
-            fetcher=Fetcher(cache=str(tmp_path / "cache")))
+        run(case.path, server.xyz(), OutputPaths.in_folder(out),
+            options=RegisterOptions(extent=extent, auto_budget_s=6), fetcher=Fetcher(cache=str(tmp_path / "cache")))
     assert not os.path.exists(os.path.join(out, "registered.tif"))
 
 
@@ -201,3 +225,6 @@ def test_a_batch_job_list_with_a_tile_reference_and_an_extent(case, first, serve
     out = tmp_path / "out"
     assert main(["batch", str(jobs), "--out", str(out), "--workers", "1", "--quiet"]) == 0, capsys.readouterr()
     assert (out / "target" / "registered.tif").is_file()
+    requests = server.requests
+    assert main(["batch", str(jobs), "--out", str(out), "--workers", "1", "--quiet"]) == 0
+    assert "already done" in capsys.readouterr().out and server.requests == requests  # resumed, nothing fetched

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from hamta.core.basemap.fetch import redact
-from hamta.core.basemap.services import HALF_WORLD, parse_service, zoom_for
+from hamta.core.basemap.services import HALF_WORLD, parse_service, redact_source
 from hamta.core.basemap.tiles import tile_range
 from hamta.core.errors import InputError, NoOverlapError
 from hamta.core.extent import bounds_in, parse_extent
@@ -27,6 +27,14 @@ def test_a_tile_template_and_qgis_layer_sources_are_services():
     assert "REQUEST=GetMap" in url and "SRS=EPSG:3857" in url and f"BBOX={-HALF_WORLD:.10g}" in url
 
 
+def test_layers_hamta_cannot_read_itself_are_left_to_qgis_or_gdal():
+    wms = "crs=EPSG:3857&format=image/png&layers=roads&layers=buildings&styles=&styles=&url=https://w.example.org/wms"
+    assert parse_service(wms).layers == "roads,buildings"
+    assert parse_service(wms.replace("EPSG:3857", "EPSG:25832")) is None  # neither Web Mercator nor lon/lat
+    for extra in ("authcfg=ab12cd", "username=me&password=pw", "http-header:referer=https://x.org", "referer=x"):
+        assert parse_service(f"type=xyz&url=https://t.example.org/%7Bz%7D/%7Bx%7D/%7By%7D.png&{extra}") is None
+
+
 @pytest.mark.parametrize("text", [SOURCE, "/vsicurl/https://example.org/cog.tif", "WMTS:https://example.org/wmts",
                                   "WCS:https://example.org/wcs?coverage=dem", "<GDAL_WMS><Service name='TMS'/>",
                                   "SERVICE=WMTS&url=https://example.org/wmts&layer=a&tileMatrixSet=g&layers=a"])
@@ -43,6 +51,11 @@ def test_credentials_never_show():
     text = redact("https://me:pa55@t.example.org/{z}/{x}/{y}.png?token=abc&style=dark")
     assert "pa55" not in text and "abc" not in text and "me:" not in text
     assert "{z}/{x}/{y}" in text and "style=dark" in text
+    for gdal in ("/vsicurl/https://me:pa55@s3.example.org/cog.tif?X-Amz-Signature=abc&x=1",
+                 "WMTS:https://w.example.org/wmts?app_code=abc,layer=a"):
+        text = redact_source(gdal)
+        assert "pa55" not in text and "abc" not in text and text.startswith(gdal[:5]), text
+    assert redact(SOURCE) == SOURCE
 
 
 def test_search_areas_parse_or_say_how_to_write_them():
@@ -57,9 +70,9 @@ def test_search_areas_parse_or_say_how_to_write_them():
     assert 1.19e6 < x0 < x1 < 1.21e6 and 8.3e6 < y0 < y1 < 8.4e6
 
 
-def test_zoom_and_tiles_follow_the_grid():
+def test_tiles_follow_the_grid():
     service = parse_service("https://t.example.org/{z}/{x}/{y}.png")
-    assert zoom_for(service, 150.0) == 11 and zoom_for(service, 1e9) == 0  # 76 m pixels at zoom 11
+    assert abs(service.resolution(11) - 76.437) < 0.01
     tiles = tile_range(service, (-HALF_WORLD, -HALF_WORLD, HALF_WORLD, HALF_WORLD), 2)
     assert (tiles.x0, tiles.y0, tiles.x1, tiles.y1, tiles.count) == (0, 0, 3, 3, 16)
     with pytest.raises(InputError, match="outside"):
@@ -87,3 +100,15 @@ def test_a_search_area_limits_what_is_read_of_a_reference_file(tmp_path):
     assert np.abs(result.model.apply(np.array([[0.0, 0.0]])) - [300, 250]).max() < 0.5
     with pytest.raises(NoOverlapError, match="search area"):
         register(target, SOURCE, options=RegisterOptions(extent="0,0,1000,1000"))
+
+
+def test_a_search_area_in_metres_without_its_crs_is_explained(tmp_path):
+    from hamta.core import RegisterOptions
+    from hamta.core.basemap.fetch import Fetcher
+    from hamta.core.progress import Monitor
+    from hamta.core.remote import register_remote
+
+    service = parse_service("http://127.0.0.1:9/{z}/{x}/{y}.png")
+    options = RegisterOptions(extent="-8900000,2400000,-8500000,2800000", target_georef="ignore")
+    with pytest.raises(InputError, match="EPSG:3857"):
+        register_remote(SOURCE, service, options, Monitor(), Fetcher(cache=str(tmp_path)))
