@@ -304,14 +304,16 @@ def tables(rows) -> list:
         first = r["time_s"]
         area = "–" if r["area_factor"] is None else f"{r['area_factor']:g}x"
         body.append([r["case"], r["method"], r["reference_style"], area, r["outcome"], r["method_used"] or "–",
-                     _num(r["median_px"], ".2f"), _num(r["max_px"], ".2f"), _num(r["zoom"], "d"), f"{first:.1f}",
+                     _num(r["median_px"], ".2f"), _num(r["rms_px"], ".2f"), _num(r["max_px"], ".2f"),
+                     _num(r["zoom"], "d"), f"{first:.1f}",
                      f"{r['fetch']['seconds']:.1f}", r["requests"], f"{r['bytes'] / 1e6:.1f}", f"{r['rerun_s']:.1f}",
                      f"{100 * r['rerun_s'] / first:.0f}%", r["rerun_requests"]])
     wrong = sum(r["outcome"] == "WRONG" for r in rows)
     return [{"title": f"basemap: registering onto a local XYZ tile server (Landsat sample, EPSG:3857); "
                       f"{wrong} confident wrong answer{'s' if wrong != 1 else ''}",
-             "columns": ["case", "method", "reference", "area", "outcome", "via", "err med px", "err max px", "zoom",
-                         "time s", "fetch s", "requests", "MB fetched", "rerun s", "rerun / first", "rerun requests"],
+             "columns": ["case", "method", "reference", "area", "outcome", "via", "err med px", "err rms px",
+                         "err max px", "zoom", "time s", "fetch s", "requests", "MB fetched", "rerun s",
+                         "rerun / first", "rerun requests"],
              "rows": body,
              "note": "Errors: true error over a 10 x 10 grid of the target, in pixels of the zoom registered at. "
                      "outcome: verified, unverified or failed (honest), WRONG (verified with an RMS error beyond "
