@@ -4,12 +4,12 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
 
 - for a georeferenced target (its georeferencing used): its footprint plus a margin
   (``FOOTPRINT_MARGIN``), at the zoom whose pixels match the target's;
-- otherwise the search area (``RegisterOptions.extent``). When the whole area fits the pixel
-  budget at the zoom level found, that read is the reference. A larger area is searched coarse to
-  fine: read at the zoom where it fits the budget, the target is located there, then the target's
-  footprint (plus the margin) is read at the zoom matching the target's pixels, and the target is
-  registered again onto that. The final registration is verified like any other; the coarse one
-  only says where to look.
+- otherwise the search area (``RegisterOptions.extent``), searched coarse to fine: read at the
+  finest zoom where it fits the pixel budget and holds at most ``2 * AREA_SHARE`` times the target's
+  pixels (a layer's finest zooms often only magnify coarser data), the target is located there;
+  when another zoom is nearer the target's own pixels (finer or coarser), its footprint (plus
+  ``LOCATED_MARGIN``) is read at that zoom and the target registered again onto it. The final
+  registration is verified like any other; the coarse one only says where to look.
 
 Each area becomes a local GeoTIFF in the service's CRS (EPSG:3857 for XYZ layers) under the cache
 folder (a private temporary folder without one), so outputs are in the service's CRS and a rerun
@@ -38,7 +38,6 @@ from .progress import Monitor
 FOOTPRINT_MARGIN = 0.3  # of the footprint's larger side, each way: georeferencing off by up to a third of it
 LOCATED_MARGIN = 0.1  # the same once the coarse search has located the target (to a coarse pixel or so)
 MIN_AREA_PX = 64  # a search area narrower than this at the finest zoom cannot hold a target
-FINE_STEP = 0.7  # refine at a finer zoom only when the target's pixels are finer than this many coarse pixels
 AREA_SHARE = 7  # the target is first looked for as if it covered 1/7 of the search area: a target covering 1/25
 # to 1/2 of it is then within a factor 2 of that scale, which every method of 'auto' matches across
 
@@ -109,7 +108,8 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     registered onto. ``notes`` get what was searched."""
     service = reader.service
     bounds = _search_bounds(options.extent, service)
-    z = _zoom_in_budget(service, bounds, 0.0, options.max_working_pixels)
+    pixels = min(options.max_working_pixels, 2 * AREA_SHARE * info.width * info.height)  # not far finer than the target
+    z = _zoom_in_budget(service, bounds, 0.0, pixels)
     path = reader.read(bounds, z, monitor.span(0.0, 0.1))
     try:
         coarse = register_onto(path, monitor.span(0.1, 0.45), target_pixels=_guess_pixels(bounds, service, z))
@@ -120,16 +120,15 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
             "twenty-fifth of the area, give a smaller search area; check that the area holds the target.", exc.found,
             exc.needed) from None
     scale = _target_pixel(coarse.model, info)  # coarse reference pixels per target pixel
-    step = int(round(math.log2(1.0 / scale))) if scale < FINE_STEP else 0  # the zoom nearest the target's pixels
+    z_target = min(max(z + int(round(math.log2(1.0 / scale))), service.zmin), service.zmax)  # nearest its pixels
     found = "found" if coarse.verified else "placed, without verification,"
     notes.append(f"searched {_size_text(bounds, service)} at zoom {z} ({_pixel_text(service, z)} pixels) for the "
                  f"target at 1/{AREA_SHARE} of the area's size (scales from 1/{2 * AREA_SHARE} to 2/{AREA_SHARE} of "
                  f"it for most methods); it was {found} with pixels of {scale:.2g} of that zoom's")
-    if min(service.zmax, z + step) <= z:
+    if z_target == z:
         return coarse, z
     around = _around(coarse, info)
-    z_fine = _zoom_in_budget(service, around, service.resolution(min(service.zmax, z + step)),
-                             options.max_working_pixels)
+    z_fine = _zoom_in_budget(service, around, service.resolution(z_target), options.max_working_pixels)
     path = reader.read(around, z_fine, monitor.span(0.45, 0.5))
     notes.append(f"then registered onto its footprint read at zoom {z_fine} ({_pixel_text(service, z_fine)} pixels)")
     try:

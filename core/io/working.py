@@ -150,7 +150,7 @@ def _prior_usable(target: RasterInfo, reference: RasterInfo, choice: str):
         return True, notes
     if choice == "use":
         raise GeoreferencingError(f"Cannot use the target's georeferencing as a starting point: {problem}.")
-    notes.append(f"searching the whole reference: {problem}")
+    notes.append(f"searching the reference (or its search area) without a starting point: {problem}")
     return False, notes
 
 

@@ -84,6 +84,14 @@ def test_an_ungeoreferenced_rotated_rescaled_crop_is_found_in_a_search_area(case
     assert first["requests"] <= 100
 
 
+def test_a_small_area_of_a_layer_finer_than_the_target_is_registered_at_the_target_zoom(case, server, tmp_path):
+    """The layer's finest zoom (12) magnifies 300 m data; the target's pixels (150 m) sit at zoom 10."""
+    result, _ = run(case.path, server.xyz(), None, options=RegisterOptions(extent=case.search_area(1.5)),
+                    fetcher=Fetcher(cache=str(tmp_path / "cache")))
+    service = result.reference_service
+    assert result.verified and service["zoom"] == 10 and service["zooms_read"][0] > 10, service
+
+
 def test_a_rerun_sends_no_request(case, first, server, tmp_path):
     fetcher = Fetcher(cache=first["cache"])
     before = server.requests
