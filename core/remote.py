@@ -51,9 +51,11 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
     info = open_raster(target, "target")
     local = dataclasses.replace(options, extent=None)
 
-    def register_onto(path, span, **extra):
-        return register(target, path, options=local, progress=span.report, is_canceled=span.canceled, **extra,
-                        **kwargs)
+    def register_onto(path, span, within=None, **extra):
+        """``within``: the part of the area file to search (bounds in its CRS); all of it by default."""
+        area = None if within is None else ",".join(f"{v:.10g}" for v in within) + f",{service.crs}"
+        return register(target, path, options=dataclasses.replace(local, extent=area), progress=span.report,
+                        is_canceled=span.canceled, **extra, **kwargs)
 
     notes = []
     if uses_georeferencing(info, options):
@@ -112,7 +114,8 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     z = _zoom_in_budget(service, bounds, 0.0, pixels)
     path = reader.read(bounds, z, monitor.span(0.0, 0.1))
     try:
-        coarse = register_onto(path, monitor.span(0.1, 0.45), target_pixels=_guess_pixels(bounds, service, z))
+        coarse = register_onto(path, monitor.span(0.1, 0.45), within=bounds,  # whole tiles reach beyond the area
+                               target_pixels=_guess_pixels(bounds, service, z))
     except InsufficientMatchesError as exc:
         raise InsufficientMatchesError(
             f"The target raster '{info.path}' was not found in the search area read at zoom {z} "
