@@ -49,9 +49,24 @@ def cmd_register(args) -> int:
     except UnverifiedResult as exc:
         print_result(exc.result, exc.written)
         print(f"hamta: {explain(exc)}", file=sys.stderr)
+        print_advice(exc.result)
         return EXIT_UNVERIFIED
     print_result(result, written)
+    if not result.verified:
+        print_advice(result, written=True)
     return EXIT_OK if result.verified else EXIT_UNVERIFIED
+
+
+def print_advice(result, written: bool = False) -> None:
+    """What may help an unverified result, as flags of this command line (stderr)."""
+    from ..core.advice import advice
+
+    tips = [t for t in advice(result) if not (written and t.option == "accept_unverified")]
+    if tips:
+        print("hamta: options that may help:", file=sys.stderr)
+    for tip in tips:
+        flag = FLAGS.get(tip.option, "--" + tip.option.replace("_", "-"))
+        print(f"  {flag}{'' if tip.value is True else f' {tip.value}'}: {tip.why}", file=sys.stderr)
 
 
 def explain(exc: HamtaError) -> str:

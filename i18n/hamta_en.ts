@@ -416,17 +416,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="105"/>
+        <location filename="../processing/register_algorithm.py" line="106"/>
         <source>Registration</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="120"/>
+        <location filename="../processing/register_algorithm.py" line="121"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="125"/>
+        <location filename="../processing/register_algorithm.py" line="126"/>
         <source>Target raster (to georeference)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -476,67 +476,67 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="136"/>
+        <location filename="../processing/register_algorithm.py" line="137"/>
         <source>Georeferenced raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="137"/>
+        <location filename="../processing/register_algorithm.py" line="138"/>
         <source>GCP points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="139"/>
+        <location filename="../processing/register_algorithm.py" line="140"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="139"/>
+        <location filename="../processing/register_algorithm.py" line="140"/>
         <source>GCP points (*.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="143"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="143"/>
         <source>VRT (*.vrt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="145"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>Report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="145"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>JSON (*.json)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="153"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="153"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="155"/>
         <source>Number of GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="184"/>
+        <location filename="../processing/register_algorithm.py" line="185"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="240"/>
+        <location filename="../processing/register_algorithm.py" line="241"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -566,27 +566,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150"/>
+        <location filename="../processing/register_algorithm.py" line="151"/>
         <source>Verdict of the independent check</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="151"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>Method that produced the result</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="243"/>
+        <location filename="../processing/register_algorithm.py" line="244"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="283"/>
+        <location filename="../processing/register_algorithm.py" line="297"/>
         <source>Verified by an independent check: {} of {} sites agree; estimated error within {:.2f} px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="286"/>
+        <location filename="../processing/register_algorithm.py" line="300"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1206,22 +1206,22 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="147"/>
+        <location filename="../processing/register_algorithm.py" line="148"/>
         <source>HTML files (*.html)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="230"/>
+        <location filename="../processing/register_algorithm.py" line="231"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="249"/>
+        <location filename="../processing/register_algorithm.py" line="250"/>
         <source>Invalid parameter: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="255"/>
+        <location filename="../processing/register_algorithm.py" line="256"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1296,7 +1296,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="128"/>
+        <location filename="../processing/register_algorithm.py" line="129"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1311,17 +1311,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="147"/>
+        <location filename="../processing/register_algorithm.py" line="148"/>
         <source>Quality report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="274"/>
+        <location filename="../processing/register_algorithm.py" line="275"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="290"/>
+        <location filename="../processing/register_algorithm.py" line="306"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1361,7 +1361,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="114"/>
+        <location filename="../processing/register_algorithm.py" line="115"/>
         <source>References: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1596,7 +1596,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="126"/>
+        <location filename="../processing/register_algorithm.py" line="127"/>
         <source>Reference raster or map layer (XYZ, WMS...)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1613,6 +1613,16 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="core_strings.py" line="60"/>
         <source>the whole reference; required with a map service</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="284"/>
+        <source>on</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="302"/>
+        <source>May help: {} ({}).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

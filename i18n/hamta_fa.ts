@@ -418,17 +418,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>نادیده گرفته شود</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="105"/>
+        <location filename="../processing/register_algorithm.py" line="106"/>
         <source>Registration</source>
         <translation>ثبت تصویر</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="120"/>
+        <location filename="../processing/register_algorithm.py" line="121"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation>زمین‌مرجع‌سازی,هم‌ثبت‌سازی,ثبت,نقطه کنترل,تطابق,هم‌ترازی,تبدیل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="125"/>
+        <location filename="../processing/register_algorithm.py" line="126"/>
         <source>Target raster (to georeference)</source>
         <translation>رستر هدف (برای زمین‌مرجع‌سازی)</translation>
     </message>
@@ -478,67 +478,67 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>بذر تصادفی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="136"/>
+        <location filename="../processing/register_algorithm.py" line="137"/>
         <source>Georeferenced raster</source>
         <translation>رستر زمین‌مرجع‌شده</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="137"/>
+        <location filename="../processing/register_algorithm.py" line="138"/>
         <source>GCP points</source>
         <translation>نقاط کنترل زمینی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="139"/>
+        <location filename="../processing/register_algorithm.py" line="140"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation>پرونده نقاط کنترل برای Georeferencer کیوجی‌آی‌اس</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="139"/>
+        <location filename="../processing/register_algorithm.py" line="140"/>
         <source>GCP points (*.points)</source>
         <translation>نقاط کنترل (*.points)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="143"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation>تصویر هدف همراه نقاط کنترل، بدون بازنمونه‌برداری (VRT)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="143"/>
         <source>VRT (*.vrt)</source>
         <translation>VRT (*.vrt)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="145"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>Report</source>
         <translation>گزارش</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="145"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>JSON (*.json)</source>
         <translation>JSON (*.json)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="153"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation>RMSE نقاط کنترل (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="153"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation>RMS به روش حذف تک‌نقطه (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="155"/>
         <source>Number of GCPs</source>
         <translation>تعداد نقاط کنترل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="184"/>
+        <location filename="../processing/register_algorithm.py" line="185"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation>{} باید پرونده رستری قابل خواندن با GDAL باشد، نه لایه‌ای از نوع «{}».</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="240"/>
+        <location filename="../processing/register_algorithm.py" line="241"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation>ثبت تصویر لغو شد؛ هیچ خروجی‌ای نوشته نشد.</translation>
     </message>
@@ -568,27 +568,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>ثبت تصویر SAR روی تصویر نوری</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150"/>
+        <location filename="../processing/register_algorithm.py" line="151"/>
         <source>Verdict of the independent check</source>
         <translation>رأی بررسی مستقل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="151"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>Method that produced the result</source>
         <translation>روشی که نتیجه را به دست داد</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="243"/>
+        <location filename="../processing/register_algorithm.py" line="244"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation>ثبت تصویر تأیید نشد: {}. هیچ خروجی زمین‌مرجع‌شده‌ای نوشته نشد؛ برای نوشتن آن در هر صورت، گزینهٔ «نگه‌داشتن نتایج تأییدنشده» را فعال کنید.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="283"/>
+        <location filename="../processing/register_algorithm.py" line="297"/>
         <source>Verified by an independent check: {} of {} sites agree; estimated error within {:.2f} px.</source>
         <translation>تأییدشده با بررسی مستقل: {} محل از {} محل هم‌خوان‌اند؛ خطای برآوردشده حداکثر {:.2f} px.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="286"/>
+        <location filename="../processing/register_algorithm.py" line="300"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation>تأیید نشد ({}): {}</translation>
     </message>
@@ -1208,22 +1208,22 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل‌های بیرون از هدف</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="147"/>
+        <location filename="../processing/register_algorithm.py" line="148"/>
         <source>HTML files (*.html)</source>
         <translation>پرونده‌های HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="230"/>
+        <location filename="../processing/register_algorithm.py" line="231"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation>نقاط کنترل در یک GeoPackage نوشته می‌شوند: یک پروندهٔ ‎.gpkg انتخاب کنید (داده‌شده: «{}»).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="249"/>
+        <location filename="../processing/register_algorithm.py" line="250"/>
         <source>Invalid parameter: {}</source>
         <translation>پارامتر نامعتبر: {}</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="255"/>
+        <location filename="../processing/register_algorithm.py" line="256"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation>همتا با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {})؛ هیچ خروجی‌ای نوشته نشد. لطفاً آن را گزارش کنید.</translation>
     </message>
@@ -1303,7 +1303,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>چارک سوم</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="128"/>
+        <location filename="../processing/register_algorithm.py" line="129"/>
         <source>Keep unverified results</source>
         <translation>نگه‌داشتن نتایج تأییدنشده</translation>
     </message>
@@ -1318,17 +1318,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل به پیکسل (مرجع بدون زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="147"/>
+        <location filename="../processing/register_algorithm.py" line="148"/>
         <source>Quality report (HTML)</source>
         <translation>گزارش کیفیت (HTML)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="274"/>
+        <location filename="../processing/register_algorithm.py" line="275"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation>{} (گزینهٔ «{}» را فعال کنید).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="290"/>
+        <location filename="../processing/register_algorithm.py" line="306"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation>{}؛ RMSE گزارش‌شده از خود برازش {:.3f} px، RMS حذف تک‌نقطه {} px (باقی‌مانده‌های برازش، نه دقت آن).</translation>
     </message>
@@ -1363,7 +1363,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>میانگین</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="114"/>
+        <location filename="../processing/register_algorithm.py" line="115"/>
         <source>References: {}</source>
         <translation>مراجع: {}</translation>
     </message>
@@ -1598,7 +1598,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>خالی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="126"/>
+        <location filename="../processing/register_algorithm.py" line="127"/>
         <source>Reference raster or map layer (XYZ, WMS...)</source>
         <translation>رستر یا لایهٔ نقشهٔ مرجع (XYZ، WMS...)</translation>
     </message>
@@ -1616,6 +1616,16 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <location filename="core_strings.py" line="60"/>
         <source>the whole reference; required with a map service</source>
         <translation>همهٔ مرجع؛ برای سرویس نقشه الزامی است</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="284"/>
+        <source>on</source>
+        <translation>روشن</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="302"/>
+        <source>May help: {} ({}).</source>
+        <translation>شاید کمک کند: {} ({}).</translation>
     </message>
 </context>
 </TS>

@@ -23,10 +23,11 @@ from qgis.core import (
 from qgis.PyQt.QtCore import QCoreApplication
 
 from ..core import RegisterOptions, UnverifiedResult, run
+from ..core.advice import advice
 from ..core.auto import AUTO
 from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
 from ..core.methods import get_method
-from ..core.options import LABEL_CHARS, resolve_options
+from ..core.options import LABEL_CHARS, option_fields, resolve_options
 from ..core.outcome import attempt_lines
 from ..core.outputs.tags import counts_text, pixel_mode_text
 from .catalogue import AUTO_ALGORITHM
@@ -273,6 +274,19 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
             return str(exc)
         return self.tr("{} (set '{}').").format(exc, definition.description())
 
+    def _setting(self, tip):
+        """An :class:`~hamta.core.advice.Advice` as this dialog shows it: 'label' = value."""
+        definition = self.parameterDefinition(KEYS.get(tip.option, self.KEEP_UNVERIFIED))
+        if definition is None:
+            return tip.option
+        value = tip.value
+        if tip.value is True:
+            value = self.tr("on")
+        elif isinstance(definition, QgsProcessingParameterEnum):
+            choice = dict((f.name, spec.choice) for f, spec in option_fields(RegisterOptions))[tip.option]
+            value = definition.options()[choice.index(tip.value)]
+        return "'{}' = {}".format(definition.description(), value)
+
     def _log(self, result, feedback):
         for line in attempt_lines(result.auto):
             feedback.pushInfo(line)
@@ -284,6 +298,8 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
                                       "{:.2f} px.").format(v.n_agree, v.n_sites, v.error_bound_px))
         else:
             feedback.reportError(self.tr("NOT VERIFIED ({}): {}").format(v.verdict, "; ".join(v.reasons)))
+            for tip in advice(result):
+                feedback.pushInfo(self.tr("May help: {} ({}).").format(self._setting(tip), tip.why))
         if result.pixel_mode:
             feedback.pushWarning(pixel_mode_text())
         s = result.stats

@@ -23,6 +23,7 @@ from typing import Mapping, Optional, Tuple
 
 import numpy as np
 
+from ..advice import advice, spelled
 from ..progress import Monitor
 from ..version import __version__
 from .html_sections import (
@@ -149,6 +150,10 @@ def _header(result, name_t: str, name_r: str, scale: Optional[MapScale]) -> str:
     verdict = "not checked" if v is None else v.verdict
     fg, bg = VERDICT_CSS.get(verdict, VERDICT_CSS["not checked"])
     reasons = "" if v is None or not v.reasons else "<ul>" + "".join(f"<li>{_e(r)}</li>" for r in v.reasons) + "</ul>"
+    tips = advice(result)
+    if tips:
+        reasons += "<div>What may help:</div><ul>" + "".join(
+            f"<li><code>{_e(spelled(t))}</code>: {_e(t.why)}</li>" for t in tips) + "</ul>"
     if v is None:
         detail = "The independent check was not run."
     else:

@@ -99,7 +99,11 @@ def test_an_unverified_result_exits_3_and_writes_only_its_report(tmp_path, demo_
     captured = capsys.readouterr()
     assert rc == 3 and "NOT VERIFIED" in captured.out and "No georeferenced output" in captured.err
     assert "(--accept-unverified)" in captured.err
+    tips = captured.err.split("options that may help:")[1]
+    assert "--model polynomial-2:" in tips and "--local:" in tips and "--accept-unverified:" in tips
     assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["report.html", "report.json"]
+    assert "What may help:</div>" in (out / "report.html").read_text() and "--local (QGIS:" in (
+        out / "report.html").read_text()
     report = json.loads((out / "report.json").read_text())
     assert report["quality"]["verdict"] != "verified" and report["quality"]["reasons"]
 
@@ -111,6 +115,8 @@ def test_accept_unverified_writes_the_outputs_with_the_verdict_in_them(tmp_path,
     rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
                "--tolerance", "0.01", "--accept-unverified", "--vrt", "--out", str(out), "--quiet"])
     assert rc == 3
+    err = capsys.readouterr().err
+    assert "--local:" in err and "--accept-unverified:" not in err  # it was given
     with rasterio.open(out / "registered.tif") as ds:
         assert ds.tags()["HAMTA_VERDICT"] in ("suspect", "failed") and "HAMTA_VERDICT_REASONS" in ds.tags()
     with rasterio.open(out / "gcps.vrt") as ds:

@@ -158,7 +158,7 @@ LAYERS = (
     ("core.descriptors",),
     ("core.matching",),
     ("core.refine", "core.verify"),
-    ("core.local", "core.methods", "core.auto", "core.result"),
+    ("core.local", "core.methods", "core.auto", "core.result", "core.advice"),
     ("core.pipeline", "core.mapping", "core.outputs"),
     ("core.remote",),
     ("core.runner",),

@@ -216,9 +216,23 @@ def test_unverified_result_fails_clearly_unless_kept(provider, demo_pair, tmp_pa
 
     params = dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], TOLERANCE=0.01,
                   OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json"))
+    from qgis.core import QgsProcessingFeedback
+
+    class Feedback(QgsProcessingFeedback):
+        def __init__(self):
+            super().__init__()
+            self.lines = []
+
+        def pushInfo(self, text):  # noqa: N802 (QGIS's name)
+            self.lines.append(text)
+
+    feedback = Feedback()
     with pytest.raises(QgsProcessingException, match="not verified"):
-        processing.run("hamta:registersift", params)
+        processing.run("hamta:registersift", params, feedback=feedback)
     assert not (tmp_path / "o.tif").exists()
+    tips = [line for line in feedback.lines if line.startswith("May help: ")]
+    assert any("'Local (non-rigid) correction' = on" in t for t in tips), feedback.lines
+    assert any("'Transformation' = Polynomial 2" in t for t in tips), tips
     res = processing.run("hamta:registersift", dict(params, KEEP_UNVERIFIED=True))
     assert res["VERDICT"] in ("suspect", "failed") and os.path.isfile(res["OUTPUT"])
 
