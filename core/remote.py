@@ -59,8 +59,10 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
 
     notes = []
     if uses_georeferencing(info, options):
-        bounds = footprint_bounds(info, service.crs)
-        z = _zoom_in_budget(service, bounds, _pixel_size(info, service), options.max_working_pixels)
+        poly = _footprint(info, service.crs)
+        bounds = _padded(poly.bounds, FOOTPRINT_MARGIN)
+        pixel_size = math.sqrt(poly.area / (info.width * info.height))
+        z = _zoom_in_budget(service, bounds, pixel_size, options.max_working_pixels)
         result = register_onto(reader.read(bounds, z, monitor.span(0.0, 0.15)), monitor.span(0.15, 1.0))
     elif options.extent is None:
         raise InputError(f"The target raster '{info.path}' has no usable georeferencing, so Hamta cannot tell where "
@@ -80,10 +82,19 @@ def uses_georeferencing(info, options: RegisterOptions) -> bool:
 
 def footprint_bounds(info, crs: str):
     """The bounds of the target's footprint in ``crs`` plus :data:`FOOTPRINT_MARGIN` each way (map units)."""
+    return _padded(_footprint(info, crs).bounds, FOOTPRINT_MARGIN)
+
+
+def _footprint(info, crs: str):
     from rasterio.crs import CRS
 
-    x0, y0, x1, y1 = footprint(info, CRS.from_user_input(crs)).bounds
-    pad = FOOTPRINT_MARGIN * max(x1 - x0, y1 - y0)
+    return footprint(info, CRS.from_user_input(crs))
+
+
+def _padded(bounds, margin: float):
+    """``bounds`` widened by ``margin`` of their larger side each way."""
+    x0, y0, x1, y1 = bounds
+    pad = margin * max(x1 - x0, y1 - y0)
     return x0 - pad, y0 - pad, x1 + pad, y1 + pad
 
 
@@ -179,13 +190,6 @@ def _search_bounds(text: str, service: TileService):
     return x0, y0, x1, y1
 
 
-def _pixel_size(info, service) -> float:
-    from rasterio.crs import CRS
-
-    poly = footprint(info, CRS.from_user_input(service.crs))
-    return math.sqrt(poly.area / (info.width * info.height))
-
-
 def _target_pixel(model, info) -> float:
     """Reference pixels per target pixel, from the model's mapping of the target's outline."""
     outline = raster_outline(info.width, info.height, 9, ends=True)
@@ -200,9 +204,7 @@ def _around(result, info):
     """The bounds (map units) of the target's footprint through ``result``, plus :data:`LOCATED_MARGIN`."""
     xy = pixel_to_map(result.reference.transform, result.model.apply(raster_outline(info.width, info.height, 9,
                                                                                     ends=True)))
-    (x0, y0), (x1, y1) = np.nanmin(xy, axis=0), np.nanmax(xy, axis=0)
-    pad = LOCATED_MARGIN * max(x1 - x0, y1 - y0)
-    return x0 - pad, y0 - pad, x1 + pad, y1 + pad
+    return _padded((*np.nanmin(xy, axis=0), *np.nanmax(xy, axis=0)), LOCATED_MARGIN)
 
 
 def _pixel_text(service: TileService, z: int) -> str:

@@ -4,172 +4,172 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../plugin/action.py" line="53"/>
+        <location filename="../plugin/action.py" line="48"/>
         <source>Hamta cannot run: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="62"/>
+        <location filename="../plugin/action.py" line="57"/>
         <source>The reference layer &apos;{}&apos; could not be read ({}: {}).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="65"/>
+        <location filename="../plugin/action.py" line="60"/>
         <source>Auto-georeference &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="78"/>
+        <location filename="../plugin/action.py" line="73"/>
         <source>Auto-georeference of &apos;{}&apos; canceled; nothing was added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="82"/>
+        <location filename="../plugin/action.py" line="77"/>
         <source>Open the GCPs in the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="88"/>
+        <location filename="../plugin/action.py" line="83"/>
         <source>&apos;{}&apos; was registered, but the independent check did not confirm it ({}). No georeferenced raster was written; see the report, or tick &apos;Keep unverified result&apos; to write it anyway.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="93"/>
+        <location filename="../plugin/action.py" line="88"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="102"/>
+        <location filename="../plugin/action.py" line="97"/>
         <source>{} (georeferenced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="103"/>
+        <location filename="../plugin/action.py" line="98"/>
         <source>{} GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="108"/>
+        <location filename="../plugin/action.py" line="103"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="114"/>
+        <location filename="../plugin/action.py" line="109"/>
         <source>, error within {:.2f} px</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="115"/>
+        <location filename="../plugin/action.py" line="110"/>
         <source>&apos;{}&apos; is georeferenced, {} GCPs, and verified by an independent check: {} of {} sites agree{}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="117"/>
+        <location filename="../plugin/action.py" line="112"/>
         <source>&apos;{}&apos; is georeferenced but NOT VERIFIED ({}); check it before use.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="117"/>
+        <location filename="../plugin/action.py" line="112"/>
         <source>not checked</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="122"/>
+        <location filename="../plugin/action.py" line="117"/>
         <source>Open report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="131"/>
+        <location filename="../plugin/action.py" line="126"/>
         <source>In the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="131"/>
+        <location filename="../plugin/action.py" line="126"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="132"/>
+        <location filename="../plugin/action.py" line="127"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="211"/>
+        <location filename="../plugin/autogeoref.py" line="207"/>
         <source>Auto-georeference</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="112"/>
+        <location filename="../plugin/autogeoref.py" line="108"/>
         <source>The raster file to georeference (a raster layer read by GDAL).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="113"/>
+        <location filename="../plugin/autogeoref.py" line="109"/>
         <source>Target raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="118"/>
+        <location filename="../plugin/autogeoref.py" line="114"/>
         <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...) or a raster. The results are in its CRS.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="120"/>
+        <location filename="../plugin/autogeoref.py" line="116"/>
         <source>Reference layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="135"/>
+        <location filename="../plugin/autogeoref.py" line="131"/>
         <source>On by default for a target without georeferencing (the map canvas extent). On for a georeferenced target, Hamta ignores the target&apos;s georeferencing and searches here.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="145"/>
+        <location filename="../plugin/autogeoref.py" line="141"/>
         <source>Search area, {} (where to look for the target)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="149"/>
+        <location filename="../plugin/autogeoref.py" line="145"/>
         <source>A folder for the warped raster, the GCPs (GeoPackage and .points) and the reports; files of an earlier run there are replaced.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="151"/>
+        <location filename="../plugin/autogeoref.py" line="147"/>
         <source>Keep unverified result</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="152"/>
+        <location filename="../plugin/autogeoref.py" line="148"/>
         <source>Write the georeferenced raster even when the independent check does not confirm the result (it is then marked NOT VERIFIED).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="154"/>
+        <location filename="../plugin/autogeoref.py" line="150"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="158"/>
+        <location filename="../plugin/autogeoref.py" line="154"/>
         <source>Run</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="197"/>
+        <location filename="../plugin/autogeoref.py" line="193"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="199"/>
+        <location filename="../plugin/autogeoref.py" line="195"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="201"/>
+        <location filename="../plugin/autogeoref.py" line="197"/>
         <source>Choose an output folder.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="203"/>
+        <location filename="../plugin/autogeoref.py" line="199"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation type="unfinished"></translation>
     </message>

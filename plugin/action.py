@@ -5,19 +5,14 @@ from __future__ import annotations
 import traceback
 
 from qgis.core import Qgis, QgsApplication, QgsMessageLog, QgsProject, QgsRasterLayer, QgsVectorLayer
-from qgis.PyQt.QtCore import QCoreApplication, QUrl
+from qgis.PyQt.QtCore import QUrl
 from qgis.PyQt.QtGui import QDesktopServices
 from qgis.PyQt.QtWidgets import QAction, QApplication, QPushButton
 
-from .task import CANCELED, CRASHED, UNVERIFIED, WRITTEN, RegisterTask
+from .task import CANCELED, CRASHED, UNVERIFIED, WRITTEN, RegisterTask, tr
 
 TITLE = "Hamta"
 GEOREFERENCER = "mActionShowGeoreferencer"  # the object name of QGIS's Raster > Georeferencer action
-
-
-def tr(text: str) -> str:
-    """pylupdate5 files the strings of a module-level ``tr()`` under '@default': they are looked up there."""
-    return QCoreApplication.translate("@default", text)
 
 
 class AutoGeoreference:

@@ -25,13 +25,9 @@ from qgis.PyQt.QtCore import QCoreApplication
 from qgis.PyQt.QtWidgets import QCheckBox, QComboBox, QDialog, QDialogButtonBox, QFormLayout, QVBoxLayout
 
 from ..core.options import MODEL, RegisterOptions
+from .task import tr
 
 SETTINGS = "hamta/autogeoreference/"  # the model and local correction last run (not 'keep unverified': a safeguard)
-
-
-def tr(text: str) -> str:
-    """pylupdate5 files the strings of a module-level ``tr()`` under '@default': they are looked up there."""
-    return QCoreApplication.translate("@default", text)
 
 
 def option_tr(text: str) -> str:

@@ -10,9 +10,14 @@ from __future__ import annotations
 import traceback
 
 from qgis.core import QgsTask
-from qgis.PyQt.QtCore import QTimer
+from qgis.PyQt.QtCore import QCoreApplication, QTimer
 
 CANCELED, WRITTEN, UNVERIFIED, FAILED, CRASHED = "canceled", "written", "unverified", "failed", "crashed"
+
+
+def tr(text: str) -> str:
+    """pylupdate5 files the strings of a module-level ``tr()`` under '@default': they are looked up there."""
+    return QCoreApplication.translate("@default", text)
 
 
 class RegisterTask(QgsTask):
