@@ -21,18 +21,19 @@ from affine import Affine
 
 from ..core.coords import apply_matrix, compose
 from ..core.preprocess.sar import lee_filter
-from . import multimodal_set, trust
+from . import collar, multimodal_set, trust
 from .cases import Canvas, Case, read_canvas, reprojected_case, warped_case
 from .nonrigid import Field, nonrigid_case
 from .synthetic import make_landscape
 
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
-            "should-fail") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch", "basemap")
+            "should-fail", "collar") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch",
+                                                                          "basemap")
 # The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
 # output writer against gdalwarp, no registration cases of its own), 'nonrigid' (local distortion, for the
 # local correction), 'batch' (throughput on a Dask cluster, no cases of its own) and 'basemap' (onto a local
 # tile server, a study of its own: hamta.bench.goals.basemap) run on request.
-DEFAULT_FAMILIES = FAMILIES[:10]
+DEFAULT_FAMILIES = FAMILIES[:11]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
                 "sar": "pairs/sar-optical_1.jpg"}
@@ -257,6 +258,10 @@ def _should_fail(quick):
             for src in sources for kind in trust.should_fail_names(quick)]
 
 
+def _collar(quick):
+    return [CaseSpec("collar", name, {"case": name}) for name in collar.names(quick)]
+
+
 def _multimodal_set(family):
     return lambda quick: [CaseSpec(family, str(i), {"pair": i}) for i in multimodal_set.pair_ids(quick)]
 
@@ -273,7 +278,7 @@ def _large(quick):
     return [CaseSpec("large", "s2_10980px", {"source": "landscape", "size": 10980, "shift": (37, -21)})]
 
 
-_SPECS = {"crops": _crops, "should-fail": _should_fail,
+_SPECS = {"crops": _crops, "should-fail": _should_fail, "collar": _collar,
           **{f: _multimodal_set(f) for f in multimodal_set.CATEGORIES},
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
@@ -293,6 +298,8 @@ def build_case(spec: CaseSpec, folder: str, size: int, data_dir: str) -> Case:
         return _pair_case(p["pair"], data_dir)
     if spec.family in multimodal_set.CATEGORIES:
         return multimodal_set.build(spec.family, p["pair"], data_dir)
+    if spec.family == "collar":
+        return collar.build(folder, p["case"], data_dir)
     if spec.family == "large":
         return _large_case(folder, name, p["size"], p["shift"])
     if spec.family == "nonrigid":
@@ -410,7 +417,7 @@ def _pair_case(pair_id: str, data_dir: str) -> Case:
 
 def available(family: str, data_dir: str) -> bool:
     """Whether a family can run (the real pairs need the data folder)."""
-    if family == "pairs":
+    if family in ("pairs", "collar"):
         return os.path.exists(os.path.join(data_dir, "pairs", "ground_truth.json"))
     if family in multimodal_set.CATEGORIES:
         return multimodal_set.available(data_dir, family)

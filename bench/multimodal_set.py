@@ -7,13 +7,11 @@ reference; ``gt_N.txt`` maps image-1 pixels to image-2 pixels with the pixel-cen
 so success is an RMS error of at most 15 px over a 20 x 20 grid of image-1 points that land inside
 image 2 (the set's README). The files are read where they are, never copied.
 
-One defect of the published ground truth is corrected: in Optical-SAR, image 1 was resized from
+Two defects of the published ground truth of Optical-SAR are corrected. Image 1 was resized from
 image 2's size to its stored size after the ground truth was made, and ``gt_N.txt`` lacks that
-rescaling, so the true map is GT o scale(w2 / w1, h2 / h1). Evidence: two unrelated matchers (the
-RIFT baseline and the product's) agree with each other within a few pixels on most pairs, with many
-inliers each, and with the corrected map, while almost none agree with the published one; in every
-other category image 1 has image 2's size or (Optical-Optical) the map already includes the
-rescaling. ``published_truth=True`` scores against the files as published.
+rescaling, so the map is first GT o scale(w2 / w1, h2 / h1); its rotation is also wrong, and is
+replaced by the one the SAR image's collar shows (:mod:`hamta.bench.sar_truth`, which gives the
+evidence). ``published_truth=True`` scores against the files as published.
 """
 from __future__ import annotations
 
@@ -25,6 +23,7 @@ import numpy as np
 
 from ..core.coords import apply_matrix
 from .cases import Case
+from .sar_truth import corrected_truth
 
 CATEGORIES = {"mm-optical": "Optical-Optical", "mm-infrared": "Optical-Infrared", "mm-sar": "Optical-SAR",
               "mm-depth": "Optical-Depth", "mm-map": "Optical-Map", "mm-night": "Nighttime"}
@@ -62,7 +61,7 @@ def build(family: str, pair: int, data_dir: str, published_truth: bool = False) 
         with rasterio.open(target) as t, rasterio.open(reference) as r:
             (tw, th), (rw, rh) = (t.width, t.height), (r.width, r.height)
     if CATEGORIES[family] == "Optical-SAR" and not published_truth:
-        g = g @ np.diag([rw / tw, rh / th, 1.0])
+        g = corrected_truth(g @ np.diag([rw / tw, rh / th, 1.0]), target, reference)
     gx, gy = np.meshgrid((np.arange(20) + 0.5) * tw / 20, (np.arange(20) + 0.5) * th / 20)
     pts = np.column_stack([gx.ravel(), gy.ravel()])
     mapped = apply_matrix(g, pts)

@@ -15,24 +15,30 @@ from typing import Optional, Tuple
 
 import cv2
 import numpy as np
+from scipy import ndimage
 
 
 def cfog(image: np.ndarray, bins: int = 9, sigma: float = 0.8, presmooth: float = 0.0,
-         valid: Optional[np.ndarray] = None) -> np.ndarray:
+         valid: Optional[np.ndarray] = None, portable: bool = False) -> np.ndarray:
     """Descriptor stack (bins, H, W) float32 of a grey ``image``; zero outside ``valid`` and within
-    the smoothing support of its border."""
-    img = image.astype(np.float32)
+    the smoothing support of its border.
+
+    ``portable`` computes the gradients and the Gaussian smoothing with numpy and scipy in double
+    precision instead of OpenCV's single-precision kernels, which differ in their last digits
+    between OpenCV versions: the independent check uses it so that its numbers, hence its verdict,
+    are the same on every library stack (same kernel size and border rule as OpenCV's)."""
+    img = image.astype(np.float64 if portable else np.float32)
     if valid is not None and not valid.all():
-        img = np.where(valid, img, np.float32(img[valid].mean()) if valid.any() else 0)
+        img = np.where(valid, img, img.dtype.type(img[valid].mean()) if valid.any() else 0)
+    blur = gaussian_blur if portable else _blur_opencv
     if presmooth > 0:
-        img = cv2.GaussianBlur(img, (0, 0), presmooth)
-    gx = cv2.Sobel(img, cv2.CV_32F, 1, 0, ksize=1)
-    gy = cv2.Sobel(img, cv2.CV_32F, 0, 1, ksize=1)
-    raw = np.empty((bins,) + img.shape, np.float32)
+        img = blur(img, presmooth)
+    gx, gy = central_differences(img) if portable else (cv2.Sobel(img, cv2.CV_32F, 1, 0, ksize=1),
+                                                        cv2.Sobel(img, cv2.CV_32F, 0, 1, ksize=1))
+    raw = np.empty((bins,) + img.shape, img.dtype)
     for k in range(bins):
         a = k * np.pi / bins
-        oriented = np.abs(np.float32(np.cos(a)) * gx + np.float32(np.sin(a)) * gy)
-        cv2.GaussianBlur(oriented, (0, 0), sigma, dst=raw[k])
+        raw[k] = blur(np.abs(img.dtype.type(np.cos(a)) * gx + img.dtype.type(np.sin(a)) * gy), sigma)
     del gx, gy
     ch = 0.5 * raw
     ch[1:] += 0.25 * raw[:-1]
@@ -41,12 +47,41 @@ def cfog(image: np.ndarray, bins: int = 9, sigma: float = 0.8, presmooth: float 
     ch[-1] += 0.25 * raw[0]
     del raw
     norm = np.sqrt(np.einsum("kij,kij->ij", ch, ch))
-    norm += np.float32(1e-6 + 1e-3 * float(ch.mean()))
+    norm += img.dtype.type(1e-6 + 1e-3 * float(ch.mean()))
     ch /= norm[None]
     if valid is not None:  # the edge between valid and filled pixels is not image structure
         r = 2 * int(np.ceil(2 * sigma + presmooth)) + 3
         ch *= cv2.erode(valid.astype(np.uint8), np.ones((r, r), np.uint8), borderType=cv2.BORDER_REPLICATE)[None]
-    return ch
+    return ch.astype(np.float32)
+
+
+def _blur_opencv(img: np.ndarray, sigma: float) -> np.ndarray:
+    return cv2.GaussianBlur(img, (0, 0), sigma)
+
+
+def gaussian_kernel(sigma: float) -> np.ndarray:
+    """OpenCV's Gaussian kernel for floating-point images: ``2 round(4 sigma) + 1`` taps, normalised."""
+    half = int(round(sigma * 8 + 1)) // 2
+    x = np.arange(-half, half + 1, dtype=np.float64)
+    k = np.exp(-x * x / (2.0 * sigma * sigma))
+    return k / k.sum()
+
+
+def gaussian_blur(img: np.ndarray, sigma: float) -> np.ndarray:
+    """Separable Gaussian smoothing in double precision, borders mirrored without repeating the edge
+    (OpenCV's default BORDER_REFLECT_101, scipy's 'mirror')."""
+    k = gaussian_kernel(sigma)
+    out = ndimage.correlate1d(img, k, axis=-1, mode="mirror")
+    return ndimage.correlate1d(out, k, axis=-2, mode="mirror")
+
+
+def central_differences(img: np.ndarray):
+    """Central differences ``f(x + 1) - f(x - 1)`` (OpenCV's Sobel with ksize 1), zero at the border
+    (mirrored without repeating the edge)."""
+    gx, gy = np.zeros_like(img), np.zeros_like(img)
+    gx[:, 1:-1] = img[:, 2:] - img[:, :-2]
+    gy[1:-1] = img[2:] - img[:-2]
+    return gx, gy
 
 
 def ncc_surface(search: np.ndarray, template: np.ndarray) -> np.ndarray:
@@ -66,7 +101,8 @@ def ncc_surface(search: np.ndarray, template: np.ndarray) -> np.ndarray:
 def peak_offset(surface: np.ndarray, radius: int) -> Tuple[Optional[np.ndarray], float]:
     """Sub-pixel (dx, dy) of the highest interior peak of ``surface`` relative to its centre
     (``radius`` px from each side), and the peak value; None where the peak is on the border."""
-    _, peak, _, (u, v) = cv2.minMaxLoc(surface)
+    v, u = np.unravel_index(int(np.argmax(surface)), surface.shape)
+    peak = surface[v, u]
     if not (0 < u < surface.shape[1] - 1 and 0 < v < surface.shape[0] - 1) or not np.isfinite(peak):
         return None, float(peak)
     dx = _parabola(surface[v, u - 1], surface[v, u], surface[v, u + 1])

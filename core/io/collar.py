@@ -21,7 +21,10 @@ SAMPLE_PIXELS = 1_000_000
 MIN_BORDER_SHARE = 0.05  # of the raster's border pixels showing the candidate value
 MIN_AREA_SHARE = 0.005  # of all pixels in the border-connected constant region
 MIN_SOLIDITY = 0.97  # the rest's area over its convex hull's: a footprint is convex
+MIN_OUTSIDE = 0.5  # of the fill's pixels outside the rest's convex hull: a collar surrounds the footprint
+HULL_MARGIN_PX = 6  # pixels of the fill just inside the hull's edge count as outside (the edge's rasterization)
 RINGING = 12  # 8-bit JPEG lifts a fill's edge this far from its value
+RINGING_PX = 8  # and that far from the edge (one 8 x 8 block): the collar grows by no more
 EDGE_PX = 2  # pixels beside the collar are neither fill nor scene (ringing, averaged cells)
 
 
@@ -63,9 +66,9 @@ def find_collar(bands: np.ndarray, dtype: str, scale: float = 1.0) -> Optional[C
     """The collar of a (bands, H, W) sample of a raster (``scale`` raster px per sample px), or None.
 
     Detection asks for pixels where every band holds exactly ``value``, connected (8-neighbourhood)
-    to the border through such pixels, and for the rest to be a footprint (see :func:`_solidity`).
+    to the border through such pixels, and for the rest to be a footprint (see :func:`_footprint`).
     The collar then also takes the compression ringing next to it (8-bit data): every band within
-    ``RINGING`` of the value, connected (4-neighbourhood) to the border.
+    ``RINGING`` of the value, connected (4-neighbourhood) to the border, within ``RINGING_PX`` of it.
     """
     if bands.ndim != 3 or min(bands.shape[1:]) < 3:
         return None
@@ -75,9 +78,10 @@ def find_collar(bands: np.ndarray, dtype: str, scale: float = 1.0) -> Optional[C
             continue
         collar = _touching_border(equal, 8)
         share = float(collar.mean())
-        if MIN_AREA_SHARE <= share < 0.999 and _solidity(~collar) >= MIN_SOLIDITY:
+        if MIN_AREA_SHARE <= share < 0.999 and _footprint(collar):
             if np.dtype(dtype) == np.uint8:
-                collar = _touching_border(np.all(np.abs(bands - value) <= RINGING, axis=0), 4)
+                band = cv2.dilate(collar.astype(np.uint8), np.ones((2 * RINGING_PX + 1,) * 2, np.uint8)) > 0
+                collar = _touching_border(np.all(np.abs(bands - value) <= RINGING, axis=0) & band, 4)
             return Collar(value, float(collar.mean()), collar, scale)
     return None
 
@@ -92,20 +96,26 @@ def _touching_border(a: np.ndarray, connectivity: int) -> np.ndarray:
     return np.isin(labels, touching[touching > 0])
 
 
-def _solidity(region: np.ndarray) -> float:
-    """Area of ``region``'s largest part over the area of its convex hull (1 for a convex region),
-    after an opening that drops the specks compression leaves in a fill; 0 when that part is not
-    nearly all of the region."""
-    opened = cv2.morphologyEx(region.astype(np.uint8), cv2.MORPH_OPEN, np.ones((5, 5), np.uint8))
+def _footprint(collar: np.ndarray) -> bool:
+    """Whether the rest of the raster is a footprint the fill surrounds: its largest part (after an
+    opening that drops the specks compression leaves in a fill) is nearly all of it and convex
+    (``MIN_SOLIDITY`` of its convex hull's area), and most of the fill (``MIN_OUTSIDE``) lies outside
+    that hull, give or take ``HULL_MARGIN_PX``. The white of a map reaching the border in a few streets
+    passes the first test (the rest is nearly the whole, convex, raster) and fails the second (the
+    streets are inside it): on the multimodal set, at most 13 % of such a fill lies outside, at least
+    39 % (95 % in the median) of a real collar."""
+    opened = cv2.morphologyEx((~collar).astype(np.uint8), cv2.MORPH_OPEN, np.ones((5, 5), np.uint8))
     n, labels, sizes, _ = cv2.connectedComponentsWithStats(opened, connectivity=8)
     if n < 2:
-        return 0.0
+        return False
     largest = 1 + int(np.argmax(sizes[1:, cv2.CC_STAT_AREA]))
     if sizes[largest, cv2.CC_STAT_AREA] < 0.95 * opened.sum():  # the fill cuts the image: not a footprint
-        return 0.0
+        return False
     region = labels == largest
-    pts = cv2.findNonZero(region.astype(np.uint8))
-    if pts is None:
-        return 0.0
-    hull = cv2.convexHull(pts)
-    return float(region.sum()) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True), 1.0)
+    hull = cv2.convexHull(cv2.findNonZero(region.astype(np.uint8)))
+    solidity = float(region.sum()) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True), 1.0)
+    inside = np.zeros(collar.shape, np.uint8)
+    cv2.fillConvexPoly(inside, hull, 1)
+    inside = cv2.erode(inside, np.ones((2 * HULL_MARGIN_PX + 1,) * 2, np.uint8))
+    outside = float((collar & (inside == 0)).sum()) / max(float(collar.sum()), 1.0)
+    return solidity >= MIN_SOLIDITY and outside >= MIN_OUTSIDE

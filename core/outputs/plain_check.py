@@ -30,6 +30,7 @@ def _odds(p: float) -> str:
 def _plain_check(v, scale: Optional[MapScale]) -> List[str]:
     """The independent check in plain words, one sentence per item; numbers escaped."""
     params = VerifyParams(tolerance_px=v.tolerance_px)
+    params = params.second_look() if v.look == "structure" else params
     other = int(v.n_sites - np.count_nonzero(v.agree | v.contradict))
     if v.n_sites == 0:
         return ["No site of the overlap could be compared (too small an overlap, masked pixels, or no detail)."]
@@ -39,9 +40,12 @@ def _plain_check(v, scale: Optional[MapScale]) -> List[str]:
 
     out = [f"At <b>{v.n_agree} of {sites(v.n_sites)}</b> checked, the two images line up where the model puts them: "
            f"the best match lies within {_both(params.agree_px, scale, '.0f')} of the model's position."]
+    if v.look == "structure":
+        out.append("These sites are a second look, placed where both images show detail: a regular grid of sites "
+                   "had not been enough to decide, so this look is held to a stricter standard.")
     if v.n_contradict:
-        out.append(f"At <b>{sites(v.n_contradict)}</b> the images clearly match better somewhere else: the ground "
-                   "changed there, or the model is wrong there.")
+        out.append(f"At <b>{sites(v.n_contradict)}</b> the images clearly match better somewhere else, by more than "
+                   "chance gives: the ground changed there, or the model is wrong there.")
     else:
         out.append("No site clearly matches better somewhere else.")
     if other:

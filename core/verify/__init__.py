@@ -10,11 +10,14 @@ Where the model is right, sites with structure peak near zero offset; where it i
 scatter. Comparing each template with the target at *other* sites gives, for this very pair, what
 wrong alignments yield: how high chance peaks get and how often one lands near zero. The verdict
 asks for (1) more sites near zero than chance explains (a binomial tail at that rate), (2) few
-sites with a clear peak elsewhere, (3) agreeing sites spread over the overlap, and (4) an error
-field fitted to the agreeing sites' offsets (their mean, a similarity or an affine trend,
-depending on how many there are) whose RMS over the overlap, plus two standard errors, is within
-the accuracy asked for. Local scatter (parallax, change, modality) widens the bound; a systematic
-error shows in the field.
+sites that decisively contradict the model (a clear peak elsewhere that beats the zero offset by more
+than chance comparisons do: a peak elsewhere that the zero offset nearly matches is an uninformative
+site, as speckle, water, shadow or repeated structure give), (3) agreeing sites spread over the
+overlap, and (4) an error field whose RMS over the overlap, debiased and plus two standard errors, is
+within the accuracy asked for. The field is grown from the sites near zero offset out to every site
+that follows it (a missed turn or scale moves distant sites beyond the agreement radius, which a fit to
+the near sites alone would not see), or is the field that more clear sites share. Local scatter
+(parallax, change, modality) widens the bound; a systematic error shows in the field.
 
 Coordinates: sites, offsets and tolerances are full-resolution reference pixels (corner convention).
 
@@ -41,16 +44,26 @@ import numpy as np
 from ..descriptors.cfog import peak_offset
 from ..io.raster import RasterInfo, open_dataset
 from ..progress import Monitor
-from .correlation import SearchSpectrum, TemplateSpectrum, turned, zero_score
-from .field import error_field, shared_error
+from .correlation import SearchSpectrum, TemplateSpectrum, margin, turned, zero_score
+from .field import error_field, fit_field, model_error
 from .params import VERDICTS, Verification, VerifyParams
-from .sites import footprint, overlap_grid, read_site, reference_overlap, site_grid, template_side
+from .sites import (
+    descriptors,
+    footprint,
+    overlap_grid,
+    read_site,
+    reference_overlap,
+    site_grid,
+    structured,
+    template_side,
+)
 from .statistics import binomial_tail, mann_whitney_greater
 from .verdict import VERDICT_RANK, corroborate, corroborating, judge, model_distance, result_rank
 
 __all__ = ["NULL_PARTNERS", "NULL_TURNS", "VERDICTS", "VERDICT_RANK", "Verification", "VerifyParams", "binomial_tail",
-           "corroborate", "corroborating", "error_field", "footprint", "judge", "mann_whitney_greater",
-           "model_distance", "overlap_grid", "result_rank", "shared_error", "site_grid", "template_side", "verify"]
+           "corroborate", "corroborating", "error_field", "fit_field", "footprint", "judge",
+           "mann_whitney_greater", "model_distance", "model_error", "overlap_grid", "result_rank", "site_grid",
+           "template_side", "verify"]
 
 NULL_PARTNERS = 4  # other sites' target content each template is also compared with (wrong alignments)
 NULL_TURNS = 3  # and, turned or mirrored (rot180, mirror x, mirror y), with the first three of those again
@@ -59,6 +72,12 @@ NULL_TURNS = 3  # and, turned or mirrored (rot180, mirror x, mirror y), with the
 def verify(model, target: RasterInfo, target_bands, reference: RasterInfo, reference_bands,
            params: VerifyParams = VerifyParams(), monitor: Optional[Monitor] = None) -> Verification:
     """Check ``model`` (target px -> reference px, any model type) against the pixels of both rasters.
+
+    The first look compares sites on a regular grid. When it does not verify the model but some sites
+    support it, a second look compares sites placed where both images show structure (chosen from a
+    lattice three times denser, no two templates overlapping), held to half the chance levels so that
+    the two looks together keep within 1.5 times the first look's risk of verifying a wrong model. The
+    look that judged better is returned; a second look that did not verify either is among its reasons.
 
     Parameters
     ----------
@@ -74,43 +93,76 @@ def verify(model, target: RasterInfo, target_bands, reference: RasterInfo, refer
     outline = footprint(model, target)
     overlap = reference_overlap(outline, reference)
     side = template_side(overlap, params)
-    sites = site_grid(outline, overlap, reference, side, params)
-    tmpls, patches = [], []
+    params = replace(params, template_px=side)
+    extent = overlap_grid(overlap)
     with open_dataset(target) as tds, open_dataset(reference) as rds:
-        for i, p in enumerate(sites):
-            pair = read_site(model, p, target, target_bands, tds, reference, reference_bands, rds, side,
-                             params.search_px)
-            tmpls.append(None if pair is None else pair[0])
-            patches.append(None if pair is None else pair[1])
-            if i % 8 == 0:
-                monitor.report(0.5 * i / max(len(sites), 1), "verifying")
-    n = len(sites)
+        def read(points, mon):
+            out = []
+            for i, p in enumerate(points):
+                out.append(read_site(model, p, target, target_bands, tds, reference, reference_bands, rds, side,
+                                     params.search_px))
+                if i % 16 == 0:
+                    mon.report(i / max(len(points), 1), "verifying")
+            return out
+
+        sites = site_grid(outline, overlap, reference, side, params)
+        first = judge(sites, *correlate(read(sites, monitor.span(0.0, 0.2)), side, params, monitor.span(0.2, 0.5)),
+                      extent, params)
+        if first.verified or not second_look_worth(first):
+            monitor.report(1.0, "verifying")
+            return replace(first, time_s=round(time.perf_counter() - t0, 4))
+        lattice = site_grid(outline, overlap, reference, side, params, step=side / 3.0)
+        pairs = read(lattice, monitor.span(0.5, 0.75))
+        chosen = structured(lattice, pairs, side, params.search_px, params.max_sites)
+        stricter = params.second_look()
+        second = judge(lattice[chosen], *correlate([pairs[i] for i in chosen], side, stricter, monitor.span(0.75, 1.0)),
+                       extent, stricter)
+    monitor.report(1.0, "verifying")
+    elapsed = round(time.perf_counter() - t0, 4)
+    if VERDICT_RANK[second.verdict] > VERDICT_RANK[first.verdict]:
+        return replace(second, time_s=elapsed, look="structure")
+    again = (f"a second look at {second.n_sites} sites where both images show structure did not confirm it "
+             f"({second.n_agree} agree)")
+    return replace(first, reasons=first.reasons + (again,), time_s=elapsed)
+
+
+def second_look_worth(first: Verification) -> bool:
+    """Whether a model the grid did not verify has support enough to look again: sites that agree or
+    that lift their correlation at zero offset above chance."""
+    return first.n_agree >= 2 or first.z_hits >= 3
+
+
+def correlate(pairs, side: int, params: VerifyParams, monitor: Monitor):
+    """(offsets, peaks, zero_z, margins) of each site's template (a :func:`read_site` pair, or None)
+    against the target at its own site (column 0) and, for chance, at ``NULL_PARTNERS`` other sites and
+    turned or mirrored at ``NULL_TURNS`` of those."""
+    stacks = [None if p is None else descriptors(p) for p in pairs]
+    n = len(pairs)
     columns = 1 + NULL_PARTNERS + NULL_TURNS
     offsets = np.full((n, columns, 2), np.nan)
     peaks = np.full((n, columns), np.nan)
     zero_z = np.full((n, columns), np.nan)
-    shape = (side + 2 * params.search_px,) * 2
-    stacks = tmpls
-    tmpls = [None if t is None else TemplateSpectrum(t, shape) for t in stacks]
-    patches = [None if p is None else SearchSpectrum(p, side) for p in patches]
-    usable = [i for i in range(n) if tmpls[i] is not None and patches[i] is not None]
+    margins = np.full((n, columns), np.nan)
+    s = params.search_px
+    shape = (side + 2 * s,) * 2
+    usable = [i for i in range(n) if stacks[i] is not None]
+    tmpls = {i: TemplateSpectrum(stacks[i][0], shape) for i in usable}
+    patches = {i: SearchSpectrum(stacks[i][1], side) for i in usable}
+    m = len(usable)
     for rank, i in enumerate(usable):
-        m = len(usable)
         step = max(m // (NULL_PARTNERS + 1), 1)
         others = [usable[(rank + k * step) % m] for k in range(1, NULL_PARTNERS + 1)]
-        pairs = [(i, tmpls[i])] + [(j, tmpls[i]) for j in others]
-        pairs += [(j, TemplateSpectrum(t, shape)) for j, t in zip(others, turned(stacks[i]))]
-        for c, (j, template) in enumerate(pairs):
+        comparisons = [(i, tmpls[i])] + [(j, tmpls[i]) for j in others]
+        comparisons += [(j, TemplateSpectrum(t, shape)) for j, t in zip(others, turned(stacks[i][0]))]
+        for c, (j, template) in enumerate(comparisons):
             if c > 0 and j == i:
                 continue
-            surface = patches[j].ncc(template, params.search_px)
-            zero_z[i, c] = zero_score(surface, params.search_px)
-            offset, peak = peak_offset(surface, params.search_px)
-            peaks[i, c] = peak
+            surface = patches[j].ncc(template, s)
+            zero_z[i, c] = zero_score(surface, s)
+            margins[i, c] = margin(surface, s, params.agree_px)
+            offset, peaks[i, c] = peak_offset(surface, s)
             if offset is not None:
                 offsets[i, c] = offset
         if rank % 8 == 0:
-            monitor.report(0.5 + 0.5 * rank / max(len(usable), 1), "verifying")
-    monitor.report(1.0, "verifying")
-    extent = overlap_grid(overlap)
-    return judge(sites, offsets, peaks, zero_z, extent, replace(params, template_px=side), time.perf_counter() - t0)
+            monitor.report(rank / max(m, 1), "verifying")
+    return offsets, peaks, zero_z, margins

@@ -1,13 +1,13 @@
 """Correlating a site's template with the target, in the frequency domain: the spectra of CFOG
 descriptor templates and search areas (:class:`TemplateSpectrum`, :class:`SearchSpectrum`), whose
 product gives the normalised cross-correlation surface over the search range, the template turned
-and mirrored (wrong alignments for the chance estimate), and how far a surface's zero-offset value
-stands above the rest. Coordinates: surfaces are indexed by offset in full-resolution reference
-pixels, ``s`` (the search range) at zero offset.
+and mirrored (wrong alignments for the chance estimate), how far a surface's zero-offset value
+stands above the rest, and how far its best value away from zero exceeds its best value near zero.
+Coordinates: surfaces are indexed by offset in full-resolution reference pixels, ``s`` (the search
+range) at zero offset.
 """
 from __future__ import annotations
 
-import cv2
 import numpy as np
 
 
@@ -35,11 +35,8 @@ class SearchSpectrum:
     def __init__(self, search: np.ndarray, side: int):
         self.spectrum = np.fft.rfft2(search, axes=(1, 2))
         self.shape = search.shape[1:]
-        w = (side, side)
-        self.s1 = cv2.boxFilter(search.sum(axis=0), -1, w, normalize=False, anchor=(0, 0),
-                                borderType=cv2.BORDER_CONSTANT)
-        self.s2 = cv2.boxFilter((search ** 2).sum(axis=0), -1, w, normalize=False, anchor=(0, 0),
-                                borderType=cv2.BORDER_CONSTANT)
+        self.s1 = window_sums(search.sum(axis=0, dtype=np.float64), side)
+        self.s2 = window_sums((search.astype(np.float64) ** 2).sum(axis=0), side)
 
     def ncc(self, template: "TemplateSpectrum", s: int) -> np.ndarray:
         """(2s + 1, 2s + 1) normalised cross-correlation surface (as :func:`ncc_surface`)."""
@@ -47,6 +44,25 @@ class SearchSpectrum:
         s1, s2 = self.s1[:2 * s + 1, :2 * s + 1], self.s2[:2 * s + 1, :2 * s + 1]
         var = np.maximum(s2 - s1 ** 2 / template.size, 0.0)
         return num / np.maximum(np.sqrt(var) * template.norm, 1e-9)
+
+
+def window_sums(a: np.ndarray, side: int) -> np.ndarray:
+    """Sums of ``a`` over every ``side`` x ``side`` window, indexed by the window's top-left corner (zero
+    beyond the array), from cumulative sums in double precision."""
+    c = np.zeros((a.shape[0] + 1, a.shape[1] + 1))
+    c[1:, 1:] = np.cumsum(np.cumsum(a, axis=0), axis=1)
+    rows, cols = a.shape
+    r1 = np.minimum(np.arange(rows) + side, rows)
+    c1 = np.minimum(np.arange(cols) + side, cols)
+    r0, c0 = np.arange(rows), np.arange(cols)
+    return c[np.ix_(r1, c1)] - c[np.ix_(r0, c1)] - c[np.ix_(r1, c0)] + c[np.ix_(r0, c0)]
+
+
+def margin(surface: np.ndarray, s: int, radius: float) -> float:
+    """How far the surface's best value beyond ``radius`` of zero offset exceeds its best value within."""
+    yy, xx = np.mgrid[-s:s + 1, -s:s + 1]
+    inside = xx * xx + yy * yy <= radius * radius
+    return float(surface[~inside].max() - surface[inside].max())
 
 
 def zero_score(surface: np.ndarray, s: int) -> float:

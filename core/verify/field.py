@@ -1,36 +1,81 @@
-"""The model's error as a field over the overlap: :func:`error_field` fits the agreeing sites'
-offsets (a mean, a similarity, an affine or a quadratic field, by how many sites there are) and
-gives its RMS over the overlap, an upper bound and the local scatter; :func:`shared_error` finds an
-error field that contradicting clear sites share; :func:`site_coverage` measures how far the
-supporting sites spread. Coordinates: sites, offsets and the ``extent`` points are full-resolution
-reference pixels; fields are fitted in coordinates centred on the extent and scaled to about 1.
+"""The model's error as a field over the overlap.
+
+:func:`error_field` fits sites' offsets with a field (a mean, a similarity, an affine or a quadratic
+field, by how many sites there are) and gives its RMS over the overlap, an upper bound and the local
+scatter. :func:`model_error` gives the agreeing sites' field and looks for an affine field that more
+sites share than agree with the model (a turn or a scale the model missed). :func:`site_coverage`
+measures how far the supporting sites spread.
+
+Coordinates: sites, offsets and the ``extent`` points are full-resolution reference pixels; fields
+are fitted in coordinates centred on the extent and scaled to about 1.
 """
 from __future__ import annotations
 
 import itertools
 import math
+from dataclasses import dataclass
+from typing import Optional, Tuple
 
 import numpy as np
 
+BOUND_SE = 2.0  # standard errors above the debiased error: the bound (see FieldFit.bound)
+# Site offsets read about 10 % short of a true shift (the sub-pixel peak and the resampling flatten it toward
+# zero: 1.41-1.89 px measured for shifts of 1.5-2 px on the calibration study), a systematic part no number of
+# sites averages away; its share of the error counts in the bound's standard error.
+OFFSET_SHARE = 0.1
+SHARED_MARGIN = 3  # sites a shared field must gain over the agreeing ones: three sites fit any affine field
+
+
+@dataclass(frozen=True, eq=False)
+class FieldFit:
+    """An error field fitted to sites' offsets: its RMS over the extent (``error``), the standard error
+    of that RMS (``se``: the RMS over the extent of the field's standard error), the residual scatter
+    of the sites, the Bayesian information criterion of the fit, and its coefficients."""
+
+    error: float
+    se: float
+    scatter: float
+    bic: float
+    coef: np.ndarray
+    centre: np.ndarray
+    scale: float
+    order: int
+
+    @property
+    def bound(self) -> float:
+        """An upper bound of the true RMS error: the RMS of the fitted field is inflated by the noise of the
+        fit (its square's expectation is the true square plus ``se`` squared), so the debiased estimate
+        plus ``BOUND_SE`` standard errors (about 97.5 % one-sided when the noise is normal), the systematic
+        ``OFFSET_SHARE`` of the offsets added to the standard error."""
+        se = math.hypot(self.se, OFFSET_SHARE * self.error)
+        return math.sqrt(max(self.error ** 2 - self.se ** 2, 0.0)) + BOUND_SE * se
+
+    def predict(self, xy: np.ndarray) -> np.ndarray:
+        """The field's offsets (K, 2) at reference px ``xy``."""
+        return (_field_design(xy, self.centre, self.scale, self.order) @ self.coef).reshape(2, -1).T
+
 
 def error_field(sites: np.ndarray, offsets: np.ndarray, extent: np.ndarray):
-    """(error, bound, scatter) in px from agreeing sites' offsets: the RMS over ``extent`` of an
-    error field fitted to them (the mean offset with fewer than 4 sites, a similarity with 4 to 7,
-    an affine from 8, and from 12 a quadratic field when the Bayesian information criterion prefers
-    it: a projective or polynomial model's error curves, and an affine field fitted where the sites
-    are would understate it toward the overlap's edges), the same plus two standard errors of the
-    fit, and the residual scatter; all None without sites."""
+    """(error, bound, scatter) in px of the field :func:`fit_field` fits; all None without sites."""
+    fit = fit_field(sites, offsets, extent)
+    return (None, None, None) if fit is None else (fit.error, fit.bound, fit.scatter)
+
+
+def fit_field(sites: np.ndarray, offsets: np.ndarray, extent: np.ndarray) -> Optional[FieldFit]:
+    """The error field of sites' ``offsets``: their mean with fewer than 4 sites, a similarity with 4 to
+    7, an affine from 8, and from 12 a quadratic field when the Bayesian information criterion prefers it
+    (a projective or polynomial model's error curves, and an affine field fitted where the sites are
+    would understate it toward the overlap's edges). None without sites."""
     k = len(sites)
     if k == 0 or len(extent) == 0:
-        return None, None, None
+        return None
     centre = extent.mean(axis=0)
     scale = max(float(np.abs(extent - centre).max()), 1.0)
     order = 0 if k < 4 else (1 if k < 8 else 2)
     fits = [_field_fit(sites, offsets, extent, centre, scale, order)]
     if k >= 12:
         fits.append(_field_fit(sites, offsets, extent, centre, scale, 3))
-    error, bound, scatter, _ = min(fits, key=lambda f: f[3])
-    return error, bound, scatter
+    return min(fits, key=lambda f: f.bic)
 
 
 def _field_design(xy: np.ndarray, centre, scale: float, order: int) -> np.ndarray:
@@ -47,8 +92,7 @@ def _field_design(xy: np.ndarray, centre, scale: float, order: int) -> np.ndarra
     return np.stack([np.concatenate(c) for c in cols], axis=1)
 
 
-def _field_fit(sites, offsets, extent, centre, scale: float, order: int):
-    """(error, bound, scatter, BIC) of one error field fitted to the sites' offsets."""
+def _field_fit(sites, offsets, extent, centre, scale: float, order: int) -> FieldFit:
     a = _field_design(sites, centre, scale, order)
     b = np.concatenate([offsets[:, 0], offsets[:, 1]])
     coef, *_ = np.linalg.lstsq(a, b, rcond=None)
@@ -63,37 +107,48 @@ def _field_fit(sites, offsets, extent, centre, scale: float, order: int):
     var = np.einsum("ij,jk,ik->i", e, cov, e).reshape(2, -1).sum(axis=0)  # per point, x + y
     se = float(np.sqrt(np.mean(var)))
     bic = len(b) * math.log(max(rss, 1e-6 * len(b)) / len(b)) + a.shape[1] * math.log(len(b))
-    return error, error + 2.0 * se, float(np.sqrt(np.mean(resid ** 2) * 2)), bic
+    return FieldFit(error, se, float(np.sqrt(np.mean(resid ** 2) * 2)), bic, coef, centre, scale, order)
 
 
-def shared_error(sites: np.ndarray, offsets: np.ndarray, extent: np.ndarray, radius: float):
-    """RMS over ``extent`` of the affine error field that most clear sites share (within ``radius``
-    of their offsets), when more sites share it than share no error at all; None otherwise.
+def model_error(sites: np.ndarray, offsets: np.ndarray, agree: np.ndarray, usable: np.ndarray, extent: np.ndarray,
+                radius: float) -> Tuple[Optional[FieldFit], Optional[float]]:
+    """(the error field of the sites that ``agree``, the RMS of an error field that ``usable`` sites share,
+    or None).
 
-    Contradicting sites scattered at random are local differences (parallax, change); contradicting
-    sites that agree with one another are the model's own error (a turn or scale it missed)."""
-    n = len(sites)
-    if n < 4 or len(extent) == 0:
+    ``usable`` sites have an interior peak worth reading. A field that more of them share than agree
+    with the model (by at least ``SHARED_MARGIN``) is the model's own error: contradicting sites that
+    agree with one another show a turn or a scale the model missed, which moves the sites far from the
+    overlap's centre beyond the agreement radius (where a field fitted to the agreeing sites alone
+    would not see it); scattered ones are local differences (parallax, change, modality)."""
+    fit = fit_field(sites[agree], offsets[agree], extent)
+    shared = _shared(sites, offsets, usable, extent, radius)
+    if shared is None or shared.sum() < agree.sum() + SHARED_MARGIN:
+        return fit, None
+    return fit, fit_field(sites[shared], offsets[shared], extent).error
+
+
+def _shared(sites, offsets, usable, extent, radius) -> Optional[np.ndarray]:
+    """The ``usable`` sites that share the affine field most of them share, within ``radius`` (three sites
+    define one; a field is tried through every triple); None with fewer than four usable sites."""
+    idx = np.nonzero(usable)[0]
+    n = len(idx)
+    if n < 4:
         return None
-    support0 = int((np.linalg.norm(offsets, axis=1) <= radius).sum())
     centre = extent.mean(axis=0)
     scale = max(float(np.abs(extent - centre).max()), 1.0)
-    a = np.column_stack([np.ones(n), (sites - centre) / scale])
-    e = np.column_stack([np.ones(len(extent)), (extent - centre) / scale])
+    a = np.column_stack([np.ones(n), (sites[idx] - centre) / scale])
+    o = offsets[idx]
     triples = np.array(list(itertools.combinations(range(n), 3)))
     blocks = a[triples]
     ok = np.abs(np.linalg.det(blocks)) > 1e-6
     if not ok.any():
         return None
-    coef = np.linalg.solve(blocks[ok], offsets[triples[ok]])  # (K, 3, 2) affine error fields
-    support = (np.linalg.norm(offsets[None] - np.einsum("nj,kjc->knc", a, coef), axis=2) <= radius).sum(axis=1)
-    k = int(np.argmax(support))
-    if support[k] <= max(support0, 3):  # three sites fit any field: a shared one needs a fourth
-        return None
-    best_field = coef[k]
-    inliers = np.linalg.norm(offsets - a @ best_field, axis=1) <= radius
-    coef = np.linalg.lstsq(a[inliers], offsets[inliers], rcond=None)[0]
-    return float(np.sqrt(np.mean(np.sum((e @ coef) ** 2, axis=1))))
+    coef = np.linalg.solve(blocks[ok], o[triples[ok]])  # (K, 3, 2) affine error fields
+    support = (np.linalg.norm(o[None] - np.einsum("nj,kjc->knc", a, coef), axis=2) <= radius).sum(axis=1)
+    best = coef[int(np.argmax(support))]
+    out = np.zeros(len(sites), bool)
+    out[idx] = np.linalg.norm(o - a @ best, axis=1) <= radius
+    return out
 
 
 def site_coverage(agreeing: np.ndarray, measured: np.ndarray) -> float:

@@ -1,23 +1,25 @@
 """Where the check looks and what it reads there: the target's footprint and its overlap with the
 reference, the regular grid of sites over the overlap (chosen by position alone), the template
 side, and, per site, the CFOG stacks of the reference template and of the target resampled through
-the model (a local affine inverse around the site) onto the template's search area. Coordinates:
+the model (a local affine inverse around the site) onto the template's search area, and, for a second
+look, sites placed where both images show structure. Coordinates:
 sites, the overlap and templates are full-resolution reference pixels (corner convention); the
 inverse maps them into target pixels for reading.
 """
 from __future__ import annotations
 
 import math
-from typing import Optional, Tuple
+from typing import List, Optional, Tuple
 
 import cv2
 import numpy as np
 from rasterio.windows import Window
+from scipy import ndimage
 from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
 from ..coords import raster_outline
-from ..descriptors.cfog import cfog
+from ..descriptors.cfog import central_differences, cfog, gaussian_blur
 from ..estimation.models import local_jacobian
 from ..io.raster import RasterInfo, read_image
 from .params import VerifyParams
@@ -56,17 +58,19 @@ def template_side(overlap, params: VerifyParams) -> int:
     return int(2 * round(min(max(side, params.template_px), params.max_template_px) / 2))
 
 
-def site_grid(outline: np.ndarray, overlap, reference: RasterInfo, side: int, params: VerifyParams) -> np.ndarray:
-    """Site centres (K, 2) in reference px: a regular grid, spacing at least one template, over the
-    overlap; templates lie inside the reference and the target neighbourhoods they are compared
-    with inside the target."""
+def site_grid(outline: np.ndarray, overlap, reference: RasterInfo, side: int, params: VerifyParams,
+              step: Optional[float] = None) -> np.ndarray:
+    """Site centres (K, 2) in reference px: a regular grid over the overlap, spacing ``step`` (by default
+    at least one template, so that no two templates overlap, and about ``params.max_sites`` sites);
+    templates lie inside the reference and the target neighbourhoods they are compared with inside the
+    target."""
     if overlap is None:
         return np.zeros((0, 2))
     lo = np.maximum(outline.min(axis=0), 0) + side / 2.0 + 1
     hi = np.minimum(outline.max(axis=0), [reference.width, reference.height]) - side / 2.0 - 1
     if np.any(hi < lo):
         return np.zeros((0, 2))
-    step = max(math.sqrt(float(overlap.area) / params.max_sites), float(side))
+    step = step or max(math.sqrt(float(overlap.area) / params.max_sites), float(side))
     nx, ny = int((hi[0] - lo[0]) // step) + 1, int((hi[1] - lo[1]) // step) + 1
     xs = (lo[0] + hi[0]) / 2 + (np.arange(nx) - (nx - 1) / 2) * step
     ys = (lo[1] + hi[1]) / 2 + (np.arange(ny) - (ny - 1) / 2) * step
@@ -99,9 +103,9 @@ def inverse_at(model, p: np.ndarray, target: RasterInfo) -> Optional[Tuple[np.nd
 
 
 def read_site(model, p, target, target_bands, tds, reference, reference_bands, rds, side: int, search: int):
-    """CFOG stacks of the reference template at ``p`` and of the target resampled through the model
-    onto the template's search area; None when the site cannot be compared (outside an image,
-    masked pixels, no structure)."""
+    """The reference template at ``p`` (and its valid pixels) and the target resampled through the model
+    onto the template's search area (and its valid pixels); None when the site cannot be compared
+    (outside an image, masked pixels, no structure)."""
     t, s = side, search
     x0, y0 = int(math.floor(p[0])) - t // 2, int(math.floor(p[1])) - t // 2
     if x0 < 0 or y0 < 0 or x0 + t > reference.width or y0 + t > reference.height:
@@ -124,11 +128,47 @@ def read_site(model, p, target, target_bands, tds, reference, reference_bands, r
     patch, pok = read_image(target, target_bands, Window(c0, r0, c1 - c0, r1 - r0), dataset=tds)
     if pok.mean() < 0.5:
         return None
-    patch = np.where(pok, patch, np.float32(patch[pok].mean())).astype(np.float32)
-    mx = (src[:, 0] - c0 - 0.5).reshape(size, size).astype(np.float32)
-    my = (src[:, 1] - r0 - 0.5).reshape(size, size).astype(np.float32)
-    warped = cv2.remap(patch, mx, my, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
-    wok = cv2.remap(pok.astype(np.uint8), mx, my, cv2.INTER_NEAREST, borderValue=0) > 0
+    patch = np.where(pok, patch, patch[pok].mean()).astype(np.float64)
+    rows_cols = np.stack([(src[:, 1] - r0 - 0.5).reshape(size, size), (src[:, 0] - c0 - 0.5).reshape(size, size)])
+    # Resampled with scipy in double precision (OpenCV's remap rounds positions to 1/32 px, and its
+    # versions differ in the last digits): the check's numbers are the same on every library stack.
+    warped = ndimage.map_coordinates(patch, rows_cols, order=1, mode="nearest")
+    wok = ndimage.map_coordinates(pok.astype(np.uint8), rows_cols, order=0, mode="constant", cval=0) > 0
     if wok.mean() < 0.95:
         return None
-    return cfog(tmpl, valid=ok), cfog(warped, valid=wok)
+    return tmpl, ok, warped, wok
+
+
+def descriptors(pair) -> Tuple[np.ndarray, np.ndarray]:
+    """The CFOG stacks of a site's template and search area (see :func:`read_site`), computed portably."""
+    tmpl, ok, warped, wok = pair
+    return cfog(tmpl, valid=ok, portable=True), cfog(warped, valid=wok, portable=True)
+
+
+def structure(image: np.ndarray, valid: np.ndarray) -> float:
+    """Mean gradient magnitude of ``image`` smoothed at 1.5 px over its ``valid`` pixels: how much an
+    area shows (edges and texture at the scale of a few pixels, not pixel noise or speckle)."""
+    gx, gy = central_differences(gaussian_blur(image.astype(np.float64), 1.5))
+    magnitude = np.sqrt(gx * gx + gy * gy)[valid]
+    return float(magnitude.mean()) if magnitude.size else 0.0
+
+
+def structured(candidates: np.ndarray, pairs, side: int, search: int, limit: int) -> List[int]:
+    """Indices of at most ``limit`` ``candidates`` (reference px) whose template and target both show
+    structure, best first and no two templates overlapping: each candidate's structure in each image,
+    as a share of that image's median over the candidates, and the smaller of the two ranks it."""
+    readable = [i for i, pair in enumerate(pairs) if pair is not None]
+    if not readable:
+        return []
+    inner = (slice(search, -search),) * 2
+    both = np.array([(structure(pairs[i][0], pairs[i][1]), structure(pairs[i][2][inner], pairs[i][3][inner]))
+                     for i in readable])
+    score = np.min(both / np.maximum(np.median(both, axis=0), 1e-9), axis=1)
+    chosen: List[int] = []
+    for j in np.argsort(-score, kind="stable"):
+        p = candidates[readable[j]]
+        if all(np.abs(p - candidates[c]).max() >= side for c in chosen):
+            chosen.append(readable[j])
+            if len(chosen) == limit:
+                break
+    return chosen

@@ -13,38 +13,34 @@ import math
 
 import numpy as np
 
-from .field import error_field, shared_error, site_coverage
+from .field import model_error, site_coverage
 from .params import Verification, VerifyParams
 from .statistics import binomial_tail, chance_rate, mann_whitney_greater
 
 VERDICT_RANK = {"verified": 2, "suspect": 1, "failed": 0}
 
 
-def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: float = 0.0) -> Verification:
-    """The verdict from per-site results: ``offsets`` (n, 1 + k, 2) and ``peaks`` (n, 1 + k) of each
-    site's template against the target at its own site (column 0) and at k other sites (chance).
-    ``extent`` (m, 2) are points over the overlap where the error field is evaluated."""
+def judge(sites, offsets, peaks, zero_z, margins, extent, params: VerifyParams, elapsed: float = 0.0) -> Verification:
+    """The verdict from per-site results: ``offsets`` (n, 1 + k, 2), ``peaks``, ``zero_z`` and ``margins``
+    (n, 1 + k) of each site's template against the target at its own site (column 0) and at k other
+    sites or turned (chance). ``margins`` is how far a surface's best value beyond the agreement radius
+    exceeds its best value within it. ``extent`` (m, 2) are points over the overlap where the error
+    field is evaluated."""
     measured = np.isfinite(peaks[:, 0])
     n = int(measured.sum())
     null_valid = np.isfinite(peaks[:, 1:])
     null_peaks = peaks[:, 1:][null_valid]
     clear_level, floor = (np.quantile(null_peaks, [0.9, 0.5]) if len(null_peaks) >= 8 else (1.0, 1.0))
-    near = np.linalg.norm(np.nan_to_num(offsets, nan=1e9), axis=2) <= params.agree_px
+    distance = np.linalg.norm(np.nan_to_num(offsets, nan=1e9), axis=2)
+    near = distance <= params.agree_px
     peak = np.nan_to_num(peaks, nan=-1.0)
-    # A site agrees when its peak (not the weakest half of chance peaks) is near zero offset; it
-    # contradicts when a clear peak (above 90 % of chance peaks) lies elsewhere.
-    agree_all = near & (peak >= floor)
-    agree, contradict = agree_all[:, 0], ~near[:, 0] & (peak[:, 0] >= clear_level) & measured
-    # Chance rates from the mismatched sites, floored by what uniformly placed chance peaks give:
-    # half pass the floor and land in the agreement disc so often; a tenth are clear, and so few
-    # of those land within 1 px (precise agreement: strong evidence from few sites).
-    cells = (2 * params.search_px + 1) ** 2
-    rate = chance_rate(agree_all[:, 1:], null_valid, 0.5 * math.pi * params.agree_px ** 2 / cells)
-    precise_all = (np.linalg.norm(np.nan_to_num(offsets, nan=1e9), axis=2) <= 1.0) & (peak >= clear_level)
-    precise_rate = chance_rate(precise_all[:, 1:], null_valid, 0.1 * math.pi / cells)
+    interior = np.isfinite(offsets[:, 0]).all(axis=1)
+    # A site agrees when its peak (not the weakest half of chance peaks) is near zero offset.
+    agree = near[:, 0] & (peak[:, 0] >= floor)
+    contradict = ~near[:, 0] & (peak[:, 0] >= clear_level) & interior & decisive(margins, null_valid,
+                                                                                   params.decisive_quantile)
     k, n_contra = int(agree.sum()), int(contradict.sum())
-    n_precise = int(precise_all[:, 0].sum())
-    chance = min(binomial_tail(k, n, rate), binomial_tail(n_precise, n, precise_rate))
+    chance, rate = agreement_chance(distance, peak, null_valid, n, floor, clear_level, params)
     # Weak sites rarely peak exactly, but at a right model their correlation at zero offset still
     # stands above the rest of their surface more often than at wrong alignments.
     z = zero_z[:, 0]
@@ -58,9 +54,9 @@ def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: 
     significant = chance <= params.max_chance or (z_chance <= params.max_z_chance and z_mw <= params.max_rank_chance)
     n_clear = k + n_contra
     coverage = site_coverage(sites[agree | lifted], sites[measured])
-    error, bound, scatter = error_field(sites[agree], offsets[agree, 0], extent)
-    clear = measured & (peak[:, 0] >= clear_level) & np.isfinite(offsets[:, 0]).all(axis=1)
-    shared = shared_error(sites[clear], offsets[clear, 0], extent, params.agree_px)
+    usable = measured & (peak[:, 0] >= floor) & interior
+    fit, shared = model_error(sites, offsets[:, 0], agree, usable, extent, params.agree_px)
+    error, bound, scatter = (None, None, None) if fit is None else (fit.error, fit.bound, fit.scatter)
     reasons = []
     if n == 0:
         reasons.append("no site of the overlap could be compared (too small an overlap, masked pixels, or no "
@@ -72,7 +68,7 @@ def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: 
     if n_clear and n_contra > params.max_contradict * n_clear:
         reasons.append(f"{n_contra} of {n_clear} clear sites contradict the model")
     if shared is not None and shared > params.tolerance_px:
-        reasons.append(f"the clear sites agree on an error of {shared:.1f} px of the model")
+        reasons.append(f"the sites agree on an error of {shared:.1f} px of the model")
     if coverage < params.min_coverage:
         reasons.append(f"the sites that support the model span only {100 * coverage:.0f} % of the overlap's extent")
     if bound is not None and bound > params.tolerance_px:
@@ -87,6 +83,37 @@ def judge(sites, offsets, peaks, zero_z, extent, params: VerifyParams, elapsed: 
     return Verification(verdict, tuple(reasons), params.tolerance_px, params.template_px, n, k, n_contra, n_clear,
                         float(rate), chance, coverage, error, bound, scatter, round(elapsed, 4), sites,
                         offsets[:, 0], peaks[:, 0], agree, contradict, z_hits, z_chance, z_mw)
+
+
+def agreement_chance(distance, peak, null_valid, n: int, floor: float, clear_level: float, params: VerifyParams):
+    """(probability, rate): how likely wrong alignments give as many sites near zero offset as these.
+
+    Agreement is counted within 1, 2, 3 px and the agreement radius (peaks above the weakest half of
+    chance peaks), and precisely (within 1 px, a clear peak): a model right to a pixel gathers its sites
+    in a small disc that chance peaks rarely reach. Each count's chance rate comes from the mismatched
+    sites, floored by what uniformly placed chance peaks give (half pass the floor; a tenth are clear);
+    the probability is the smallest binomial tail times the number of counts (Bonferroni). ``rate`` is
+    the chance rate at the agreement radius."""
+    cells = (2 * params.search_px + 1) ** 2
+    counts = [((distance <= r) & (peak >= floor), 0.5 * math.pi * r * r / cells)
+              for r in [r for r in (1.0, 2.0, 3.0) if r < params.agree_px] + [params.agree_px]]
+    counts.append(((distance <= 1.0) & (peak >= clear_level), 0.1 * math.pi / cells))
+    tails = []
+    for hits, uniform in counts:
+        rate = chance_rate(hits[:, 1:], null_valid, uniform)
+        tails.append(binomial_tail(int(hits[:, 0].sum()), n, rate))
+    agree_rate = chance_rate(counts[-2][0][:, 1:], null_valid, counts[-2][1])
+    return min(1.0, min(tails) * len(tails)), agree_rate
+
+
+def decisive(margins: np.ndarray, null_valid: np.ndarray, quantile: float) -> np.ndarray:
+    """Sites (column 0 of ``margins``) whose best value beyond the agreement radius exceeds their best
+    value within it by more than ``quantile`` of the chance comparisons that peak beyond it do: a clear
+    peak elsewhere that the zero offset nearly matches is an ambiguous site (repeated structure, speckle,
+    a surface without one peak), not evidence against the model."""
+    chance = margins[:, 1:][null_valid & (np.nan_to_num(margins[:, 1:], nan=-1.0) > 0)]
+    level = float(np.quantile(chance, quantile)) if len(chance) >= 8 else 0.0
+    return np.nan_to_num(margins[:, 0], nan=-1.0) > level
 
 
 def corroborating(result, earlier, tolerance_px: float):

@@ -45,3 +45,21 @@ def test_collar_pixels_read_as_invalid_unless_nodata_is_declared(raster_writer):
     assert not valid[~inside].any() and valid[inside].mean() > 0.93
     declared = open_raster(raster_writer("declared.tif", img, nodata=0))
     assert declared.collar is None
+
+
+def test_white_streets_of_a_web_map_reaching_the_border_are_not_a_collar(shared):
+    """Six Optical-Map references of the multimodal set have white streets that reach the border in a few
+    places; the rest of the map is then nearly the whole raster and convex, but the streets lie inside
+    it, not around it. Read as a collar they took a third of each map (every near-white pixel)."""
+    folder = shared / "data" / "multimodal" / "Optical-Map"
+    for pair in (14, 23, 37, 45, 76, 77):
+        assert open_raster(str(folder / f"pair{pair}_2.jpg")).collar is None
+
+
+def test_the_collar_takes_the_ringing_beside_it_not_a_dark_area_that_reaches_it():
+    img, inside = _rotated_footprint()
+    img[inside & (np.arange(300)[:, None] > 200)] = 6  # a dark field (sea, shadow) from the collar inwards
+    collar = find_collar(img[None], "uint8")
+    dark = inside & (np.arange(300)[:, None] > 200)
+    far = dark & (cv2.distanceTransform(inside.astype(np.uint8), cv2.DIST_L2, 3) > 12)
+    assert collar is not None and far.sum() > 1000 and not collar.mask[far].any()
