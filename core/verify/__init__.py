@@ -50,9 +50,11 @@ from .params import VERDICTS, Verification, VerifyParams
 from .sites import (
     descriptors,
     footprint,
+    grid_centre,
     overlap_grid,
     read_site,
     reference_overlap,
+    reflections,
     site_grid,
     structured,
     template_side,
@@ -105,18 +107,23 @@ def verify(model, target: RasterInfo, target_bands, reference: RasterInfo, refer
                     mon.report(i / max(len(points), 1), "verifying")
             return out
 
+        centre = grid_centre(overlap) if overlap is not None else np.zeros(2)
         sites = site_grid(outline, overlap, reference, side, params)
-        first = judge(sites, *correlate(read(sites, monitor.span(0.0, 0.2)), side, params, monitor.span(0.2, 0.5)),
-                      extent, params)
+        pairs = read(sites, monitor.span(0.0, 0.2))
+        mirror = reflections(sites, centre)
+        first = judge(sites, *correlate(pairs, [pairs[j] if j >= 0 else None for j in mirror], side, params,
+                                        monitor.span(0.2, 0.5)), extent, params)
         if first.verified or not second_look_worth(first):
             monitor.report(1.0, "verifying")
             return replace(first, time_s=round(time.perf_counter() - t0, 4))
         lattice = site_grid(outline, overlap, reference, side, params, step=side / 3.0)
         pairs = read(lattice, monitor.span(0.5, 0.75))
+        mirror = reflections(lattice, centre)
         chosen = structured(lattice, pairs, side, params.search_px, params.max_sites)
         stricter = params.second_look()
-        second = judge(lattice[chosen], *correlate([pairs[i] for i in chosen], side, stricter, monitor.span(0.75, 1.0)),
-                       extent, stricter)
+        second = judge(lattice[chosen], *correlate([pairs[i] for i in chosen],
+                                                   [pairs[mirror[i]] if mirror[i] >= 0 else None for i in chosen],
+                                                   side, stricter, monitor.span(0.75, 1.0)), extent, stricter)
     monitor.report(1.0, "verifying")
     elapsed = round(time.perf_counter() - t0, 4)
     if VERDICT_RANK[second.verdict] > VERDICT_RANK[first.verdict]:
@@ -132,10 +139,12 @@ def second_look_worth(first: Verification) -> bool:
     return first.n_agree >= 2 or first.z_hits >= 3
 
 
-def correlate(pairs, side: int, params: VerifyParams, monitor: Monitor):
-    """(offsets, peaks, zero_z, margins) of each site's template (a :func:`read_site` pair, or None)
+def correlate(pairs, reflected, side: int, params: VerifyParams, monitor: Monitor):
+    """(offsets, peaks, zero_z, margins, turned) of each site's template (a :func:`read_site` pair, or None)
     against the target at its own site (column 0) and, for chance, at ``NULL_PARTNERS`` other sites and
-    turned or mirrored at ``NULL_TURNS`` of those."""
+    turned or mirrored at ``NULL_TURNS`` of those; ``turned`` is (offsets, peaks) of the model turned by
+    180 degrees about the grid's centre: the site's template turned, against the target at the site's
+    reflection (``reflected``, a pair or None per site)."""
     stacks = [None if p is None else descriptors(p) for p in pairs]
     n = len(pairs)
     columns = 1 + NULL_PARTNERS + NULL_TURNS
@@ -165,4 +174,16 @@ def correlate(pairs, side: int, params: VerifyParams, monitor: Monitor):
                 offsets[i, c] = offset
         if rank % 8 == 0:
             monitor.report(rank / max(m, 1), "verifying")
-    return offsets, peaks, zero_z, margins
+    turned_offsets, turned_peaks = np.full((n, 2), np.nan), np.full(n, np.nan)
+    spectra = {id(p): patches[i] for i, p in enumerate(pairs) if i in patches}
+    for i in usable:
+        pair = reflected[i]
+        if pair is None:
+            continue
+        if id(pair) not in spectra:
+            spectra[id(pair)] = SearchSpectrum(descriptors(pair)[1], side)
+        surface = spectra[id(pair)].ncc(TemplateSpectrum(turned(stacks[i][0])[0], shape), s)
+        offset, turned_peaks[i] = peak_offset(surface, s)
+        if offset is not None:
+            turned_offsets[i] = offset
+    return offsets, peaks, zero_z, margins, (turned_offsets, turned_peaks)

@@ -96,7 +96,8 @@ class Verification:
     tolerance) or 'failed' (nothing supports the model). Site arrays (reference px): ``sites_xy``,
     measured ``offset_xy`` (NaN where no interior peak), ``peak`` (NCC), ``agree``, ``contradict``.
     ``look`` says where the sites were: 'grid' (a regular grid) or 'structure' (the second look's sites,
-    placed where both images show structure).
+    placed where both images show structure). ``turned_agree`` sites agree with the model turned by 180
+    degrees about the overlap's centre, as likely as ``turned_chance`` from wrong alignments.
     """
 
     verdict: str
@@ -124,6 +125,8 @@ class Verification:
     z_mw: float = 1.0
     corroboration: Optional[dict] = None
     look: str = "grid"
+    turned_agree: int = 0
+    turned_chance: float = 1.0
 
     @property
     def verified(self) -> bool:
@@ -141,6 +144,7 @@ class Verification:
                 "estimated_error_px": num(self.error_px), "error_bound_px": num(self.error_bound_px),
                 "local_scatter_px": num(self.scatter_px), "time_s": self.time_s, "z_hits": self.z_hits,
                 "z_chance": self.z_chance, "z_mw": self.z_mw, "corroboration": self.corroboration, "look": self.look,
+                "turned_agree": self.turned_agree, "turned_chance": self.turned_chance,
                 "sites": [{"reference_px": [float(x), float(y)],
                            "offset_px": None if not np.isfinite(o).all() else [float(o[0]), float(o[1])],
                            "peak": num(p), "agree": bool(a), "contradict": bool(c)}

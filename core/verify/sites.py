@@ -66,20 +66,45 @@ def site_grid(outline: np.ndarray, overlap, reference: RasterInfo, side: int, pa
     target."""
     if overlap is None:
         return np.zeros((0, 2))
-    lo = np.maximum(outline.min(axis=0), 0) + side / 2.0 + 1
-    hi = np.minimum(outline.max(axis=0), [reference.width, reference.height]) - side / 2.0 - 1
+    lo, hi = _grid_box(outline, reference, side)
     if np.any(hi < lo):
         return np.zeros((0, 2))
     step = step or max(math.sqrt(float(overlap.area) / params.max_sites), float(side))
-    nx, ny = int((hi[0] - lo[0]) // step) + 1, int((hi[1] - lo[1]) // step) + 1
-    xs = (lo[0] + hi[0]) / 2 + (np.arange(nx) - (nx - 1) / 2) * step
-    ys = (lo[1] + hi[1]) / 2 + (np.arange(ny) - (ny - 1) / 2) * step
-    gx, gy = np.meshgrid(xs, ys)
+    centre = grid_centre(overlap)
+    axes = []
+    for c, a, b in zip(centre, lo, hi):
+        half = int(max(c - a, b - c) // step)
+        ticks = c + np.arange(-half, half + 1) * step
+        axes.append(ticks[(ticks >= a) & (ticks <= b)])
+    gx, gy = np.meshgrid(*axes)
     pts = np.column_stack([gx.ravel(), gy.ravel()])
     margin = side / 2.0 + params.search_px + 2
     poly = outline.astype(np.float32)
     inside = np.array([cv2.pointPolygonTest(poly, (float(x), float(y)), True) >= margin for x, y in pts], bool)
     return pts[inside] if len(pts) else pts
+
+
+def _grid_box(outline: np.ndarray, reference: RasterInfo, side: int):
+    lo = np.maximum(outline.min(axis=0), 0) + side / 2.0 + 1
+    hi = np.minimum(outline.max(axis=0), [reference.width, reference.height]) - side / 2.0 - 1
+    return lo, hi
+
+
+def grid_centre(overlap) -> np.ndarray:
+    """The overlap's centroid, the centre of every grid :func:`site_grid` lays (whatever its step): the
+    grids are symmetric about it, so a site's reflection through it is a site of the same grid unless
+    that one was left out."""
+    return np.array(overlap.centroid.coords[0], float)
+
+
+def reflections(points: np.ndarray, centre: np.ndarray) -> np.ndarray:
+    """For each of ``points`` (K, 2), the index of the point at its reflection through ``centre`` (within
+    0.01 px), or -1."""
+    if len(points) == 0:
+        return np.zeros(0, int)
+    d = np.linalg.norm((2 * centre - points)[:, None, :] - points[None, :, :], axis=2)
+    nearest = np.argmin(d, axis=1)
+    return np.where(d[np.arange(len(points)), nearest] <= 0.01, nearest, -1)
 
 
 def inverse_at(model, p: np.ndarray, target: RasterInfo) -> Optional[Tuple[np.ndarray, np.ndarray]]:

@@ -20,12 +20,14 @@ from .statistics import binomial_tail, chance_rate, mann_whitney_greater
 VERDICT_RANK = {"verified": 2, "suspect": 1, "failed": 0}
 
 
-def judge(sites, offsets, peaks, zero_z, margins, extent, params: VerifyParams, elapsed: float = 0.0) -> Verification:
+def judge(sites, offsets, peaks, zero_z, margins, turned, extent, params: VerifyParams,
+          elapsed: float = 0.0) -> Verification:
     """The verdict from per-site results: ``offsets`` (n, 1 + k, 2), ``peaks``, ``zero_z`` and ``margins``
     (n, 1 + k) of each site's template against the target at its own site (column 0) and at k other
     sites or turned (chance). ``margins`` is how far a surface's best value beyond the agreement radius
-    exceeds its best value within it. ``extent`` (m, 2) are points over the overlap where the error
-    field is evaluated."""
+    exceeds its best value within it. ``turned`` is (offsets (n, 2), peaks (n,)) of the model turned by
+    180 degrees about the overlap's centre (None or NaN where not compared). ``extent`` (m, 2) are
+    points over the overlap where the error field is evaluated."""
     measured = np.isfinite(peaks[:, 0])
     n = int(measured.sum())
     null_valid = np.isfinite(peaks[:, 1:])
@@ -53,6 +55,7 @@ def judge(sites, offsets, peaks, zero_z, margins, extent, params: VerifyParams, 
             if n and len(z_null) >= 8 else 1.0)
     significant = chance <= params.max_chance or (z_chance <= params.max_z_chance and z_mw <= params.max_rank_chance)
     n_clear = k + n_contra
+    k_turned, n_turned, turned_chance = turned_agreement(turned, floor, rate, params)
     coverage = site_coverage(sites[agree | lifted], sites[measured])
     usable = measured & (peak[:, 0] >= floor) & interior
     fit, shared = model_error(sites, offsets[:, 0], agree, usable, extent, params.agree_px)
@@ -67,6 +70,9 @@ def judge(sites, offsets, peaks, zero_z, margins, extent, params: VerifyParams, 
         reasons.append(f"wrong alignments would give this much agreement with probability {min(chance, z_chance):.1e}")
     if n_clear and n_contra > params.max_contradict * n_clear:
         reasons.append(f"{n_contra} of {n_clear} clear sites contradict the model")
+    if k_turned >= params.min_agree and turned_chance <= params.max_suspect_chance:
+        reasons.append(f"the model turned by 180 degrees about the overlap's centre fits too ({k_turned} of {n_turned} "
+                       "sites agree with it): the scene repeats, and the check cannot tell the two apart")
     if shared is not None and shared > params.tolerance_px:
         reasons.append(f"the sites agree on an error of {shared:.1f} px of the model")
     if coverage < params.min_coverage:
@@ -82,7 +88,8 @@ def judge(sites, offsets, peaks, zero_z, margins, extent, params: VerifyParams, 
         verdict = "failed"
     return Verification(verdict, tuple(reasons), params.tolerance_px, params.template_px, n, k, n_contra, n_clear,
                         float(rate), chance, coverage, error, bound, scatter, round(elapsed, 4), sites,
-                        offsets[:, 0], peaks[:, 0], agree, contradict, z_hits, z_chance, z_mw)
+                        offsets[:, 0], peaks[:, 0], agree, contradict, z_hits, z_chance, z_mw,
+                        turned_agree=k_turned, turned_chance=turned_chance)
 
 
 def agreement_chance(distance, peak, null_valid, n: int, floor: float, clear_level: float, params: VerifyParams):
@@ -104,6 +111,20 @@ def agreement_chance(distance, peak, null_valid, n: int, floor: float, clear_lev
         tails.append(binomial_tail(int(hits[:, 0].sum()), n, rate))
     agree_rate = chance_rate(counts[-2][0][:, 1:], null_valid, counts[-2][1])
     return min(1.0, min(tails) * len(tails)), agree_rate
+
+
+def turned_agreement(turned, floor: float, rate: float, params: VerifyParams):
+    """(sites that agree with the model turned by 180 degrees, sites compared, the probability that wrong
+    alignments agree that often): a right model's turned twin agrees by chance alone (on the multimodal
+    set, never with probability below 0.4); a scene of repeated parcels or streets can fit both."""
+    if turned is None:
+        return 0, 0, 1.0
+    offsets, peaks = turned
+    compared = np.isfinite(peaks)
+    near = np.linalg.norm(np.nan_to_num(offsets, nan=1e9), axis=1) <= params.agree_px
+    k = int((near & compared & (np.nan_to_num(peaks, nan=-1.0) >= floor)).sum())
+    n = int(compared.sum())
+    return k, n, binomial_tail(k, n, rate)
 
 
 def decisive(margins: np.ndarray, null_valid: np.ndarray, quantile: float) -> np.ndarray:

@@ -82,12 +82,12 @@ def test_judge_separates_agreement_from_chance():
     offsets[:, 0] = rng.normal(0, 0.2, (n, 2))
     z = np.column_stack([np.full(n, 4.0), rng.normal(0, 1, (n, k - 1))])
     margins = np.full(peaks.shape, -0.1)
-    v = judge(sites, offsets, peaks, z, margins, extent, VerifyParams())
+    v = judge(sites, offsets, peaks, z, margins, None, extent, VerifyParams())
     assert v.verified and v.n_agree == n
     offsets[:, 0] = rng.uniform(-7.5, 7.5, (n, 2))
     peaks[:, 0] = rng.uniform(0.05, 0.3, n)
     z[:, 0] = rng.normal(0, 1, n)
-    assert judge(sites, offsets, peaks, z, margins, extent, VerifyParams()).verdict == "failed"
+    assert judge(sites, offsets, peaks, z, margins, None, extent, VerifyParams()).verdict == "failed"
 
 
 def test_error_field_recovers_a_rotation_error_the_mean_would_hide():
@@ -139,14 +139,16 @@ def _grid_sites(n=5, lo=50.0, hi=450.0):
 
 
 def _evidence(offsets0, peaks0, margins0, rng, k=7):
-    """Per-site arrays for judge: column 0 as given, k - 1 chance columns of weak scattered peaks."""
+    """Per-site arrays for judge: column 0 as given, k - 1 chance columns of weak scattered peaks, and the
+    turned model's comparisons as weak scattered peaks."""
     n = len(offsets0)
     offsets = rng.uniform(-7.5, 7.5, (n, k, 2))
     offsets[:, 0] = offsets0
     peaks = np.column_stack([peaks0, rng.uniform(0.05, 0.3, (n, k - 1))])
     z = np.column_stack([np.full(n, 4.0), rng.normal(0, 1, (n, k - 1))])
     margins = np.column_stack([margins0, rng.uniform(-0.05, 0.1, (n, k - 1))])
-    return offsets, peaks, z, margins
+    turned = (rng.uniform(-7.5, 7.5, (n, 2)), rng.uniform(0.05, 0.3, n))
+    return offsets, peaks, z, margins, turned
 
 
 def test_a_peak_elsewhere_contradicts_only_when_it_beats_the_zero_offset_decisively():
@@ -198,3 +200,17 @@ def test_the_bound_covers_the_true_error_in_95_percent_of_fits_and_is_tighter_th
         if fit.error <= 2 * fit.se:
             tighter.append(fit.bound < fit.error + 2 * fit.se)
     assert np.mean(covered) >= 0.95 and len(tighter) > 200 and all(tighter)
+
+
+def test_a_model_whose_half_turned_twin_fits_too_is_not_verified():
+    """A scene of repeated parcels can fit a model and the same model turned by 180 degrees: when the twin
+    agrees at more sites than chance explains, the check cannot tell them apart and says so."""
+    rng = np.random.default_rng(8)
+    sites = _grid_sites()
+    extent = _grid_sites(20, 25.0, 475.0)
+    evidence = list(_evidence(rng.normal(0, 0.3, (25, 2)), np.full(25, 0.8), np.full(25, -0.3), rng))
+    assert judge(sites, *evidence, extent, VerifyParams()).verified
+    evidence[4] = (rng.normal(0, 0.5, (25, 2)), np.full(25, 0.7))
+    v = judge(sites, *evidence, extent, VerifyParams())
+    assert v.verdict == "suspect" and v.turned_agree == 25
+    assert any("turned by 180 degrees" in r for r in v.reasons), v.reasons
