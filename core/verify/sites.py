@@ -70,18 +70,22 @@ def site_grid(outline: np.ndarray, overlap, reference: RasterInfo, side: int, pa
     if np.any(hi < lo):
         return np.zeros((0, 2))
     step = step or max(math.sqrt(float(overlap.area) / params.max_sites), float(side))
-    centre = grid_centre(overlap)
-    axes = []
-    for c, a, b in zip(centre, lo, hi):
-        half = int(max(c - a, b - c) // step)
-        ticks = c + np.arange(-half, half + 1) * step
-        axes.append(ticks[(ticks >= a) & (ticks <= b)])
-    gx, gy = np.meshgrid(*axes)
+    gx, gy = np.meshgrid(*(_ticks(c, a, b, step) for c, a, b in zip(grid_centre(overlap), lo, hi)))
     pts = np.column_stack([gx.ravel(), gy.ravel()])
     margin = side / 2.0 + params.search_px + 2
     poly = outline.astype(np.float32)
     inside = np.array([cv2.pointPolygonTest(poly, (float(x), float(y)), True) >= margin for x, y in pts], bool)
     return pts[inside] if len(pts) else pts
+
+
+def _ticks(c: float, a: float, b: float, step: float) -> np.ndarray:
+    """Positions ``step`` apart within [a, b], symmetric about ``c``: one at ``c`` or two half a step from
+    it, whichever fits more."""
+    half = int(max(c - a, b - c) // step) + 1
+    odd = c + np.arange(-half, half + 1) * step
+    even = c + (np.arange(-half, half) + 0.5) * step
+    odd, even = odd[(odd >= a) & (odd <= b)], even[(even >= a) & (even <= b)]
+    return even if len(even) > len(odd) else odd
 
 
 def _grid_box(outline: np.ndarray, reference: RasterInfo, side: int):

@@ -20,19 +20,21 @@ from hamta.core.verify import VerifyParams, verify
 
 # (pair, shift px): verdict, look, sites, agreeing sites, estimated error px, error bound px
 PAIRS = {
-    ("multitemporal", 0.0): ("verified", "grid", 25, 18, 0.2272, 0.4251),
-    ("multitemporal", 6.0): ("failed", "grid", 25, 0, None, None),
+    ("multitemporal", 0.0): ("verified", "grid", 25, 18, 0.2323, 0.4188),
+    ("multitemporal", 6.0): ("failed", "grid", 25, 1, 1.8240, 2.2801),
     ("sar_optical", 0.0): ("verified", "grid", 19, 19, 0.9540, 1.5040),
     ("sar_optical", 6.0): ("failed", "grid", 16, 0, None, None),
 }
 # (Optical-SAR pair, tolerance px): model (target px -> reference px), then as above
 SAR = {
     (4, 15.0): ([[0.413264, 0.44675, -52.807506], [-0.443868, 0.373865, 142.838351]],
-                ("suspect", "grid", 13, 5, 5.7388, 9.8545)),
+                ("verified", "structure", 14, 5, 2.7751, 5.9927)),
     (17, 3.0): ([[0.987343, 0.818094, -51.45221], [-0.803034, 0.976061, 110.015971]],
-                ("verified", "structure", 15, 5, 0.6243, 2.0766)),
+                ("verified", "structure", 15, 7, 0.9618, 2.1497)),
     (3, 15.0): ([[0.603275, 0.216337, -42.072453], [-0.232344, 0.585479, 57.252111]],
                 ("verified", "structure", 15, 6, 1.0997, 5.6231)),
+    (20, 15.0): ([[0.71026, 0.573513, -55.984419], [-0.568778, 0.708166, 108.076355]],
+                 ("suspect", "grid", 13, 4, 2.9490, 4.3302)),
 }
 
 
