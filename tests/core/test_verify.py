@@ -214,3 +214,19 @@ def test_a_model_whose_half_turned_twin_fits_too_is_not_verified():
     v = judge(sites, *evidence, extent, VerifyParams())
     assert v.verdict == "suspect" and v.turned_agree == 25
     assert any("turned by 180 degrees" in r for r in v.reasons), v.reasons
+
+
+@pytest.mark.parametrize("wrong", [None, "shift5", "turn2"])
+def test_the_second_look_verifies_a_weak_right_pair_and_not_the_same_model_a_little_off(shared, wrong):
+    """An optical image onto a speckled SAR scene (Optical-SAR pair 17 of the multimodal set, both grey): the
+    grid cannot decide, the second look, at sites where both images show structure, verifies the right
+    model; the same model 5 px off or turned by 2 degrees (about 3 px at the edges) is not verified."""
+    folder = shared / "data" / "multimodal" / "Optical-SAR"
+    t, r = open_raster(str(folder / "pair17_1.jpg")), open_raster(str(folder / "pair17_2.jpg"))
+    m = np.array([[0.987343, 0.818094, -51.45221], [-0.803034, 0.976061, 110.015971], [0, 0, 1.0]])
+    m = {None: m, "shift5": _shifted(m, 5.0), "turn2": _rotated(m, 2.0, [128.0, 128.0])}[wrong]
+    v = verify(LinearModel("affine", m), t, resolve_bands(t, None), r, resolve_bands(r, None), VerifyParams())
+    if wrong is None:
+        assert v.verified and v.look == "structure", v.reasons
+    else:
+        assert not v.verified and v.reasons
