@@ -28,11 +28,12 @@ from .synthetic import make_landscape
 
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
             "should-fail", "collar") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch",
-                                                                          "basemap")
+                                                                          "basemap", "speed")
 # The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
 # output writer against gdalwarp, no registration cases of its own), 'nonrigid' (local distortion, for the
 # local correction), 'batch' (throughput on a Dask cluster, no cases of its own) and 'basemap' (onto a local
-# tile server, a study of its own: hamta.bench.goals.basemap) run on request.
+# tile server, a study of its own: hamta.bench.goals.basemap) and 'speed' (whole runs against each peer on
+# its own ground: hamta.bench.goals.speed) run on request.
 DEFAULT_FAMILIES = FAMILIES[:11]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
@@ -282,7 +283,8 @@ _SPECS = {"crops": _crops, "should-fail": _should_fail, "collar": _collar,
           **{f: _multimodal_set(f) for f in multimodal_set.CATEGORIES},
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
-          "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: [], "basemap": lambda quick: []}
+          "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: [], "basemap": lambda quick: [],
+          "speed": lambda quick: []}
 
 
 # ----------------------------------------------------------------------------------------------

@@ -7,10 +7,11 @@ def all_studies():
     from .goals.basemap import STUDY as basemap
     from .goals.batch import STUDY as batch
     from .goals.large import STUDY as large
+    from .goals.speed import STUDY as speed
     from .goals.writing import STUDY as writing
     from .reproductions.lines_spectral import STUDY as lines_spectral
     from .reproductions.ndsift import STUDY as ndsift
     from .reproductions.rilbp import STUDY as rilbp
     from .reproductions.sibrif import STUDY as sibrif
 
-    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap]
+    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, speed]

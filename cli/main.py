@@ -39,7 +39,9 @@ def cmd_register(args) -> int:
     from ..core.outputs import OutputPaths
 
     options, output = settings_from(args)
-    paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format)
+    only = None if args.outputs is None else OutputPaths.parse(args.outputs.split(","))
+    paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format,
+                                  only=None if only is None else only + (("vrt",) if args.vrt else ()))
     cluster = contextlib.nullcontext() if not args.scheduler else scheduler_map(args.scheduler)
     try:
         with cluster as map_chunks:
@@ -254,6 +256,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--param", action="append", default=[], metavar="KEY=VALUE",
                    help="method parameter, repeatable (see 'hamta methods --verbose')")
     r.add_argument("--vrt", action="store_true", help="also write gcps.vrt (target + GCPs, no resampling)")
+    r.add_argument("--outputs", default=None, metavar="NAME,...",
+                   help="write only these outputs (what is not asked for is not computed): "
+                        "raster, points, gpkg, report, html, vrt; default all but vrt")
     add_options(r)
     r.add_argument("--accept-unverified", action="store_true",
                     help="write the outputs even when the result is not verified (the verdict is in every output)")

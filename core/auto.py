@@ -1,6 +1,8 @@
 """``auto``: methods from fast to robust, until one's result verifies.
 
-The fast path decides first: OpenCV SIFT registers most same-sensor pairs in about a second, and
+For two georeferenced rasters, the offset their georeferencing leaves is measured first, by
+correlation in well-spread windows (:mod:`hamta.core.methods.shift`, AROSICS's ground). Then the
+fast path: OpenCV SIFT registers most same-sensor pairs in about a second, and
 when its result verifies nothing else runs. Otherwise rotation- and scale-invariant multimodal
 matching (``xmodal``), then the structural (CFOG) search for north-up modality gaps, then
 SAR-specific matching, and last the slow all-rotation structural search, each checked by the
@@ -48,6 +50,13 @@ CHAIN = (
     Step("ndsift-pc", {}, "SAR onto SAR: speckle-robust features, any rotation"),
     Step("cfog", {"max_rotation_deg": 180.0}, "across modalities at any rotation, dense (slow)"),
 )
+# Refinement 'on': the windows are few, the full-resolution grid gives the fit its spread and precision.
+SHIFT_STEP = Step("shift", {}, "both rasters georeferenced: the offset left, by correlation in windows", refine="on")
+
+
+def chain_for(plan_mode: str):
+    """The steps for a plan: the shift first when the target's georeferencing placed it."""
+    return ((SHIFT_STEP,) if plan_mode == "georeferenced" else ()) + CHAIN
 
 
 def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):

@@ -13,7 +13,7 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
-from .auto import AUTO, register_auto
+from .auto import AUTO, chain_for, register_auto
 from .coords import pixel_to_map
 from .errors import ReferenceNotGeoreferenced, method_crashes
 from .estimation.framed import CrsFrame
@@ -80,7 +80,7 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
             step_options = options if options.refine != "auto" else dataclasses.replace(options, refine=refine)
             return match_and_fit(inputs, name, p, step_options, mon, map_chunks)
 
-        return register_auto(attempt, options, rest)
+        return register_auto(attempt, options, rest, chain_for(inputs.plan.mode))
     params = get_method(method).make_params(params)  # a wrong name or parameter is the caller's, not a crash
     with method_crashes(method):
         return match_and_fit(inputs, method, params, options, rest, map_chunks)

@@ -10,6 +10,7 @@ Remote Sensing 9(7):676, :DOI:`10.3390/rs9070676`), applied at feature locations
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, replace
 from typing import List, Optional, Tuple
 
@@ -66,6 +67,20 @@ class RefineParams:
             raise ValueError(f"refinement points must be 'matches' or 'grid', got {self.points!r}")
         if self.similarity not in ("ncc", "cfog"):
             raise ValueError(f"refinement similarity must be 'ncc' or 'cfog', got {self.similarity!r}")
+
+
+THREADS = min(os.cpu_count() or 1, 4)  # points are refined side by side: GDAL, OpenCV and numpy release the GIL
+
+
+def threaded(fn, items) -> list:
+    """``[fn(x) for x in items]`` on up to ``THREADS`` threads; results keep their order, exceptions propagate."""
+    items = list(items)
+    if THREADS < 2 or len(items) < 2:
+        return [fn(x) for x in items]
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(min(THREADS, len(items))) as pool:
+        return list(pool.map(fn, items))
 
 
 # For images of different modality: CFOG templates on a grid, found in the target at full resolution.
@@ -156,21 +171,25 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
     """
     monitor = monitor or Monitor()
     inverse = model.inverse()
-    t, s = params.template_px, params.search_px
-    out_t, out_r, out_c = [], [], []
     pts = as_xy(reference_xy)
-    with open_dataset(target) as tds, open_dataset(reference) as rds:
-        for i, p in enumerate(pts):
-            found = _refine_one(p, inverse, target, target_bands, tds, reference, reference_bands, rds, t, s,
-                                params.min_ncc, params.similarity)
-            if found is not None:
-                out_t.append(found[0])
-                out_r.append(found[1])
-                out_c.append(found[2])
-            if i % 16 == 0:
-                monitor.report(i / max(len(pts), 1), "refining")
+    chunks = np.array_split(np.arange(len(pts)), max(1, min(THREADS, len(pts) // 32)))
+
+    def refine_chunk(index):
+        found = []
+        with open_dataset(target) as tds, open_dataset(reference) as rds:  # a dataset is not shared by threads
+            for k, i in enumerate(index):
+                found.append(_refine_one(pts[i], inverse, target, target_bands, tds, reference, reference_bands, rds,
+                                         params.template_px, params.search_px, params.min_ncc, params.similarity))
+                if k % 16 == 0:
+                    monitor.report(k / max(len(index), 1), "refining")
+        return found
+
+    found = [f for chunk in threaded(refine_chunk, chunks) for f in chunk if f is not None]
     monitor.report(1.0, "refining")
-    return Correspondences.unfitted(np.array(out_t), np.array(out_r), np.array(out_c))
+    if not found:
+        return Correspondences.unfitted(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
+    return Correspondences.unfitted(np.array([f[0] for f in found]), np.array([f[1] for f in found]),
+                                    np.array([f[2] for f in found]))
 
 
 def _refine_one(p, inverse, target, target_bands, tds, reference, reference_bands, rds, t, s, min_ncc, similarity):

@@ -57,27 +57,9 @@ def make_case(folder: str, source: str, amplitude: float, patches: int, seed: in
 def _gdal_shim() -> None:
     """AROSICS's helpers use GDAL 3.7-3.8 Python API (``with`` on datasets, ``gdal.config_options``);
     Debian bookworm has 3.6. Add those to 3.6's bindings, in this process only."""
-    from osgeo import gdal, ogr
+    from hamta.bench.goals.speed import GDAL_SHIM
 
-    if not hasattr(gdal, "config_options"):  # a 3.7 context manager
-        import contextlib
-
-        @contextlib.contextmanager
-        def config_options(options, thread_local=True):
-            old = {k: gdal.GetConfigOption(k) for k in options}
-            for k, v in options.items():
-                gdal.SetConfigOption(k, v)
-            try:
-                yield
-            finally:
-                for k, v in old.items():
-                    gdal.SetConfigOption(k, v)
-
-        gdal.config_options = config_options
-    for cls, close in ((gdal.Dataset, "FlushCache"), (ogr.DataSource, "Release")):  # 3.8 closes on exit
-        if not hasattr(cls, "__enter__"):
-            cls.__enter__ = lambda self: self
-            cls.__exit__ = lambda self, *exc, close=close: getattr(self, close)()
+    exec(GDAL_SHIM, {})
 
 
 def _skimage_shim() -> None:

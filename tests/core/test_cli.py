@@ -24,6 +24,24 @@ def test_register_writes_every_output_and_prints_them(tmp_path, demo_pair, capsy
     assert report["method"] == "sift" and report["outputs"]["raster"].endswith("registered.tif")
 
 
+def test_outputs_writes_only_what_is_asked_for(tmp_path, demo_pair, capsys, monkeypatch):
+    import hamta.core.outputs as outputs
+
+    def not_asked(*args, **kwargs):
+        raise AssertionError("an output nobody asked for was computed")
+
+    monkeypatch.setattr(outputs, "write_html_report", not_asked)
+    monkeypatch.setattr(outputs, "write_gcp_layer", not_asked)
+    out = tmp_path / "out"
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+               "--out", str(out), "--outputs", "raster,report", "--quiet"])
+    assert rc == 0
+    assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["registered.tif", "report.json"]
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
+               "--outputs", "raster,html5", "--quiet"])
+    assert rc == 2 and "unknown output(s) html5" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("model", ["affine", "tps"])
 def test_map_points_uses_the_stored_model(tmp_path, demo_pair, capsys, model):
     out = tmp_path / model

@@ -40,7 +40,8 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "bounded"))
 EXIT_CODES = {0, 1, 2, 3}
 TOLERANCE_PX = 3.0
 SIZE = 400
-FAMILIES = {"opencv": ["sift", "orb", "phasecorr"], "rilbp": ["rilbp", "rilbp-faithful", "cslbp", "censure-sift"],
+FAMILIES = {"opencv": ["sift", "orb", "phasecorr", "shift"],
+            "rilbp": ["rilbp", "rilbp-faithful", "cslbp", "censure-sift"],
             "sibrif": ["sibrif", "sibrif-faithful", "pca-sift"],
             "sar": ["ndsift-pc", "ndsift-pc-faithful", "ndss-sift", "gss-sift", "bfsift"],
             "structural": ["cfog", "lines-spectral-faithful", "lines-eigen", "lines-vspm"], "phase": ["xmodal", "rift"],
