@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import signal
@@ -41,7 +42,8 @@ def cmd_register(args) -> int:
     options, output = settings_from(args)
     only = None if args.outputs is None else OutputPaths.parse(args.outputs.split(","))
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format,
-                                  only=None if only is None else only + (("vrt",) if args.vrt else ()))
+                                  only=None if only is None else only + (("vrt",) if args.vrt else ()),
+                                  overwrite=args.overwrite)
     cluster = contextlib.nullcontext() if not args.scheduler else scheduler_map(args.scheduler)
     try:
         with cluster as map_chunks:
@@ -79,13 +81,15 @@ def explain(exc: HamtaError) -> str:
 def print_result(result, written) -> None:
     """What the run found: the attempts of 'auto', the verdict first, then the self-reported fit."""
     from ..core.outcome import attempt_lines
-    from ..core.outputs.tags import counts_text, pixel_mode_text, verdict_text
+    from ..core.outputs.tags import counts_text, pixel_mode_text, unknown_crs_text, verdict_text
 
     for line in attempt_lines(result.auto):
         print(line)
     print(f"result: {verdict_text(result)}")
     if result.pixel_mode:
         print(f"note: {pixel_mode_text()}")
+    elif result.reference.crs is None:
+        print(f"note: {unknown_crs_text(result)}")
     s = result.stats
     print(f"method {result.method}, model {result.model.kind}: {counts_text(s)}; "
           f"self-reported RMSE {s.rmse_px:.3f} px, RMS_LOO {_fmt(s.rms_loo_px)} px; {result.timings.wall:.2f} s")
@@ -107,7 +111,7 @@ def cmd_batch(args) -> int:
     options, output = settings_from(args)
     jobs = read_jobs(args.source, args.out, args.reference)
     settings = BatchSettings(method=args.method, options=options, output=output,
-                             accept_unverified=args.accept_unverified)
+                             accept_unverified=args.accept_unverified, overwrite=args.overwrite)
     result = run_batch(jobs, settings, scheduler=args.scheduler, workers=args.workers,
                        progress=ProgressBar(not args.quiet))
     tables = write_results(args.out, result.records)
@@ -256,6 +260,8 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--param", action="append", default=[], metavar="KEY=VALUE",
                    help="method parameter, repeatable (see 'hamta methods --verbose')")
     r.add_argument("--vrt", action="store_true", help="also write gcps.vrt (target + GCPs, no resampling)")
+    r.add_argument("--overwrite", action="store_true",
+                   help="replace files in OUT that Hamta did not write there (refused otherwise)")
     r.add_argument("--outputs", default=None, metavar="NAME,...",
                    help="write only these outputs (what is not asked for is not computed): "
                         "raster, points, gpkg, report, html, vrt; default all but vrt")
@@ -282,6 +288,8 @@ def build_parser() -> argparse.ArgumentParser:
                                                       "a VRT mosaic or a map service, as for 'register')")
     bt.add_argument("--method", default="auto", help="matching method of every pair (a job's own overrides it)")
     add_options(bt)
+    bt.add_argument("--overwrite", action="store_true",
+                    help="replace files in a pair's folder that Hamta did not write there (that pair fails otherwise)")
     bt.add_argument("--accept-unverified", action="store_true",
                     help="write the outputs even when the result is not verified (the verdict is in every output)")
     bt.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -348,7 +356,19 @@ def _joined_values(argv: List[str]) -> List[str]:
 
 def main(argv: Optional[List[str]] = None) -> int:
     """Run one ``hamta`` command; returns its exit code (see ``EXIT_*``); never shows a traceback
-    unless ``HAMTA_DEBUG`` is set."""
+    unless ``HAMTA_DEBUG`` is set. Closed, full or abandoned standard streams change nothing but what
+    is shown (see :class:`Tolerant`)."""
+    streams = sys.stdout, sys.stderr
+    sys.stdout, sys.stderr = Tolerant(streams[0]), Tolerant(streams[1])
+    try:
+        return _main(argv)
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        sys.stdout, sys.stderr = streams
+
+
+def _main(argv) -> int:
     parser = build_parser()
     try:
         args = parser.parse_args(_joined_values(sys.argv[1:] if argv is None else list(argv)))
@@ -356,19 +376,13 @@ def main(argv: Optional[List[str]] = None) -> int:
         return exc.code if isinstance(exc.code, int) else EXIT_USAGE
     previous = _terminate_as_interrupt()
     try:
-        code = args.func(args)
-        sys.stdout.flush()  # a closed pipe shows here, not at exit
-        return code
+        return args.func(args)
     except KeyboardInterrupt:
         print("hamta: interrupted; no output was published", file=sys.stderr)
         return EXIT_CANCELED
     except RegistrationCanceled as exc:
         print(f"hamta: {exc}", file=sys.stderr)
         return EXIT_CANCELED
-    except BrokenPipeError:  # the reader went away (e.g. ``hamta methods | head``): stop quietly
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        return EXIT_OK
     except HamtaError as exc:
         print(f"hamta: error: {explain(exc)}", file=sys.stderr)
         return EXIT_ERROR
@@ -385,6 +399,48 @@ def main(argv: Optional[List[str]] = None) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+
+
+class Tolerant:
+    """A standard stream that cannot end the run: once the reader has gone (``| head``), the stream is
+    closed (``>&-``) or its disk is full (``>/dev/full``), what is written is dropped, so the exit
+    code still says what the command did (its outputs are published whatever the terminal does)."""
+
+    def __init__(self, stream):
+        self.stream = stream
+        self.broken = stream is None
+
+    def write(self, text: str) -> int:
+        if not self.broken:
+            try:
+                self.stream.write(text)
+            except (OSError, ValueError):
+                self._drop()
+        return len(text)
+
+    def flush(self) -> None:
+        if not self.broken:
+            try:
+                self.stream.flush()
+            except (OSError, ValueError):
+                self._drop()
+
+    def isatty(self) -> bool:
+        try:
+            return not self.broken and self.stream.isatty()
+        except (OSError, ValueError):
+            return False
+
+    def _drop(self) -> None:
+        """Stop writing; the file descriptor points at /dev/null, so the interpreter's last flush is quiet."""
+        self.broken = True
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            os.dup2(devnull, self.stream.fileno())
+            os.close(devnull)
+
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
 
 
 def _terminate_as_interrupt():

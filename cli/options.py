@@ -3,6 +3,7 @@ definition in :mod:`hamta.core.options` (flag, type, default, help), and mapped 
 from __future__ import annotations
 
 import argparse
+import re
 
 from ..core.options import OutputOptions, RegisterOptions, cli_flag, option_fields, option_type
 
@@ -33,7 +34,16 @@ def add_options(parser: argparse.ArgumentParser) -> None:
 
 
 def settings_from(args: argparse.Namespace):
-    """(RegisterOptions, OutputOptions) from the arguments :func:`add_options` added."""
+    """(RegisterOptions, OutputOptions) from the arguments :func:`add_options` added; a bad value's
+    message names the flag the user typed, not the field behind it."""
     def build(cls):
         return cls(**{f.name: getattr(args, f.name) for f, _ in option_fields(cls)})
-    return build(RegisterOptions), build(OutputOptions)
+    try:
+        return build(RegisterOptions), build(OutputOptions)
+    except ValueError as exc:
+        raise ValueError(in_flags(str(exc))) from None
+
+
+def in_flags(message: str) -> str:
+    """``message``, which starts with the option's field name (``tolerance_px``), with its flag (``--tolerance``)."""
+    return re.sub(r"^[a-z][a-z0-9_]*\b", lambda m: FLAGS.get(m.group(0), m.group(0)), message)

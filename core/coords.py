@@ -7,6 +7,8 @@ shift between the two lives here. Arrays of points are ``(N, 2)`` float64 named 
 """
 from __future__ import annotations
 
+from typing import Optional
+
 import numpy as np
 from affine import Affine
 
@@ -88,3 +90,14 @@ def compose(*transforms: Affine) -> Affine:
     for t in transforms:
         m = m @ affine_to_matrix(t)
     return Affine(m[0, 0], m[0, 1], m[0, 2], m[1, 0], m[1, 1], m[1, 2])
+
+
+def continue_longitudes(xy: np.ndarray, centre: Optional[float]) -> np.ndarray:
+    """Longitudes (column 0) moved by whole turns to within half a turn of ``centre`` (a geographic
+    raster's central longitude), so that a raster across the antimeridian, written as 179..181 or as
+    -181..-179, stays in one piece; unchanged when ``centre`` is None (a projected CRS)."""
+    if centre is None:
+        return xy
+    out = np.array(xy, dtype=np.float64)
+    out[:, 0] += 360.0 * np.round((centre - out[:, 0]) / 360.0)
+    return out

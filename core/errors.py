@@ -77,6 +77,12 @@ class OutputError(HamtaError, OSError):
     """An output cannot be written (folder not writable, disk full, ...)."""
 
 
+class ForeignFiles(OutputError):
+    """A run folder holds files Hamta did not write there; they are replaced only when asked."""
+
+    option = "overwrite"
+
+
 class RegistrationCanceled(HamtaError):
     """The caller asked to stop; nothing was written."""
 

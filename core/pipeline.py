@@ -19,7 +19,7 @@ from .errors import ReferenceNotGeoreferenced, method_crashes
 from .estimation.framed import CrsFrame
 from .estimation.robust import RobustRules, final_fit, robust_linear
 from .io.raster import RasterInfo, check_on_earth, open_raster, resolve_bands
-from .io.working import Plan, WorkingImage, prepare_working_images
+from .io.working import Plan, WorkingImage, central_longitude, prepare_working_images
 from .local import LocalParams, local_correction
 from .methods import get_method
 from .options import RegisterOptions, resolve_options
@@ -175,4 +175,5 @@ def crs_frame(plan: Plan, target, reference) -> Optional[CrsFrame]:
     """The target's own CRS frame when its georeferencing was used and its CRS differs."""
     if plan.mode != "georeferenced" or target.crs is None or target.crs == reference.crs:
         return None
-    return CrsFrame(target.transform, target.crs.to_wkt(), reference.transform, reference.crs.to_wkt())
+    return CrsFrame(target.transform, target.crs.to_wkt(), reference.transform, reference.crs.to_wkt(),
+                    central_longitude(reference), central_longitude(target))

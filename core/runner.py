@@ -7,6 +7,7 @@ written (when asked for), and :class:`UnverifiedResult` says why.
 """
 from __future__ import annotations
 
+import dataclasses
 import os
 from typing import Dict, Optional, Tuple
 
@@ -19,6 +20,7 @@ from .options import OutputOptions, RegisterOptions
 from .outputs import OutputPaths, write_outputs
 from .outputs.atomic import check_creatable_folder
 from .outputs.tags import verdict_text
+from .outputs.warp import check_output_options
 from .pipeline import register
 from .progress import Monitor
 from .remote import register_remote
@@ -56,6 +58,9 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     if paths is not None and paths.as_dict():
         inputs = [open_raster(target, "target")] + ([] if service else [open_raster(reference, "reference")])
         check_destinations(paths, inputs)
+        if paths.raster:
+            check_output_options(output, inputs[0], paths.raster)
+    request = run_request(method, params, options, accept_unverified)
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
     stage = monitor.span(0.0, share)
     if service is not None:
@@ -70,14 +75,24 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     if not result.verified and not accept_unverified:
         written = {}
         if paths.report or paths.html:  # the reports say why; in a run folder they replace the previous set whole
-            written = write_outputs(result, OutputPaths(report=paths.report, html=paths.html, folder=paths.folder),
-                                    output=output, is_canceled=is_canceled)
+            written = write_outputs(result, OutputPaths(report=paths.report, html=paths.html, folder=paths.folder,
+                                                            overwrite=paths.overwrite),
+                                    output=output, is_canceled=is_canceled, request=request)
         raise UnverifiedResult(f"The registration of '{result.target.path}' is {verdict_text(result)}. No "
                                "georeferenced output was written; accept unverified results to write it anyway",
                                result, written)
     written = write_outputs(result, paths, output=output, progress=lambda f, m: stage.report(f, m),
-                            is_canceled=is_canceled)
+                            is_canceled=is_canceled, request=request)
     return result, written
+
+
+def run_request(method: str, params, options: RegisterOptions, accept_unverified: bool) -> dict:
+    """What a run is asked, as ``report.json`` keeps it (JSON types): a batch resumes a pair only for the same."""
+    import json
+
+    values = params if params is None or isinstance(params, dict) else dataclasses.asdict(params)
+    return json.loads(json.dumps({"method": method, "params": dict(values or {}),
+                                  "options": dataclasses.asdict(options), "accept_unverified": accept_unverified}))
 
 
 def check_destinations(paths: OutputPaths, inputs) -> None:
@@ -91,3 +106,4 @@ def check_destinations(paths: OutputPaths, inputs) -> None:
         if os.path.realpath(path) in read:
             raise OutputError(f"The output '{path}' ({kind}) is one of the input files or a file they read; "
                               "choose another output path (inputs are never overwritten).")
+    paths.check_ours()

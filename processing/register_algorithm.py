@@ -29,7 +29,7 @@ from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
 from ..core.methods import get_method
 from ..core.options import LABEL_CHARS, option_fields, resolve_options
 from ..core.outcome import attempt_lines
-from ..core.outputs.tags import counts_text, pixel_mode_text
+from ..core.outputs.tags import counts_text, pixel_mode_text, unknown_crs_text
 from .catalogue import AUTO_ALGORITHM
 from .help import help_url
 from .mapping import method_parameter_name, method_values, register_settings
@@ -302,6 +302,8 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
                 feedback.pushInfo(self.tr("May help: {} ({}).").format(self._setting(tip), tip.why))
         if result.pixel_mode:
             feedback.pushWarning(pixel_mode_text())
+        elif result.reference.crs is None:
+            feedback.pushWarning(unknown_crs_text(result))
         s = result.stats
         feedback.pushInfo(self.tr("{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, "
                                   "not its accuracy).").format(

@@ -23,6 +23,8 @@ from typing import List, Optional
 from ..basemap.services import parse_service
 from ..errors import InputError
 from ..extent import parse_extent
+from ..methods import get_method
+from ..options import MODEL
 
 RASTER_EXTENSIONS = (".tif", ".tiff", ".vrt", ".jp2", ".img", ".jpg", ".jpeg", ".png", ".nc", ".hdf", ".h5")
 
@@ -52,6 +54,8 @@ class Job:
 
 def read_jobs(source: str, out: str, reference: Optional[str] = None) -> List[Job]:
     """The jobs of ``source`` (a .csv or .gpkg list, a folder, or a glob of targets with ``reference``)."""
+    if source.lower().endswith((".csv", ".gpkg")) and not os.path.exists(source):
+        raise InputError(f"The job list '{source}' does not exist.")
     if source.lower().endswith(".csv") and os.path.isfile(source):
         rows = _csv_rows(source)
     elif source.lower().endswith(".gpkg") and os.path.isfile(source):
@@ -92,8 +96,15 @@ def _jobs(rows: list, base: str, out: str, reference: Optional[str], source: str
                 parse_extent(extent)
             except ValueError as exc:
                 raise InputError(f"Row {i} of {source}: {exc}.") from None
-        jobs.append(Job(target, ref, folder, (row.get("method") or "").strip() or None,
-                        (row.get("model") or "").strip() or None, extent))
+        method, model = (row.get("method") or "").strip() or None, (row.get("model") or "").strip() or None
+        try:
+            if method is not None:
+                get_method(method)
+            if model is not None:
+                MODEL.check(model)
+        except ValueError as exc:
+            raise InputError(f"Row {i} of {source}: {exc}.") from None
+        jobs.append(Job(target, ref, folder, method, model, extent))
     return jobs
 
 

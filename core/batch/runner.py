@@ -195,8 +195,9 @@ def _local_cluster(n: int, processes: bool):
                    "distributed.worker.http.routes": ["distributed.http.health"]}
     with dask.config.set(health_only):
         return LocalCluster(n_workers=n, threads_per_worker=1, processes=processes, host="127.0.0.1", security=True,
-                            dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
-                            worker_dashboard_address="127.0.0.1:0", silence_logs=logging.ERROR)
+                            dashboard_address=None, worker_dashboard_address="127.0.0.1:0",
+                            scheduler_kwargs={"dashboard_address": "127.0.0.1:0", "dashboard": False},
+                            silence_logs=logging.ERROR)
 
 
 def _connect(address: str):

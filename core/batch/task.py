@@ -4,7 +4,7 @@
 into the job's own output folder (published whole or not at all, so a worker killed mid-write
 leaves nothing half-written) and returns a plain record (JSON-able) of what happened; it never
 raises for a pair that fails, so one bad pair never stops a batch. A job whose folder already holds
-a finished set for the same inputs is not run again (:func:`finished_record`).
+a whole set published for the same inputs and request is not run again (:func:`finished_record`).
 
 A record's ``status`` is the pair's outcome: 'verified'; 'unverified' when a model was found but the
 independent check did not verify it (its ``verdict`` then says 'suspect' or 'failed', the check's
@@ -39,6 +39,7 @@ class BatchSettings:
     output: OutputOptions = OutputOptions()
     accept_unverified: bool = False
     spread_local: bool = True
+    overwrite: bool = False
 
 
 def register_job(job: Job, settings: BatchSettings) -> dict:
@@ -46,15 +47,13 @@ def register_job(job: Job, settings: BatchSettings) -> dict:
     from ..outputs import OutputPaths
     from ..runner import run
 
+    method, options = job_request(job, settings)
     done = finished_record(job, settings)
     if done is not None:
         return done
-    options = settings.options if job.model is None else replace(settings.options, model=job.model)
-    options = options if job.extent is None else replace(options, extent=job.extent)
-    method = job.method or settings.method
     t0 = time.perf_counter()
     try:
-        paths = OutputPaths.in_folder(job.out, raster_format=settings.output.format)
+        paths = OutputPaths.in_folder(job.out, raster_format=settings.output.format, overwrite=settings.overwrite)
         run(job.target, job.reference, paths, method=method, options=options, output=settings.output,
             accept_unverified=settings.accept_unverified, map_chunks=_cluster_map() if settings.spread_local else None)
     except UnverifiedResult:
@@ -65,22 +64,41 @@ def register_job(job: Job, settings: BatchSettings) -> dict:
     return from_report(job, method, time.perf_counter() - t0)
 
 
+def job_request(job: Job, settings: BatchSettings):
+    """(method, RegisterOptions) of ``job``: the batch's, with the job's own method, model and extent."""
+    options = settings.options if job.model is None else replace(settings.options, model=job.model)
+    options = options if job.extent is None else replace(options, extent=job.extent)
+    return job.method or settings.method, options
+
+
 def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
-    """The record of an earlier run of ``job`` whose outputs are all there, else None."""
+    """The record of an earlier run of ``job`` asked the same (inputs, method, options, output options,
+    accepting unverified results) whose published set is whole (every file its manifest lists, at its
+    size, after finishing a publication a killed run committed), else None."""
+    from dataclasses import asdict
+
+    from ..outputs.atomic import published_files, recover
+    from ..runner import run_request
+
+    method, options = job_request(job, settings)
     report = os.path.join(job.out, "report.json")
-    if not (os.path.isfile(os.path.join(job.out, ".hamta-manifest.json")) and os.path.isfile(report)):
-        return None
     try:
+        recover(job.out)
+        files = published_files(job.out)
+        whole = bool(files) and all(os.path.getsize(os.path.join(job.out, n)) == size for n, size in files.items())
+        if not whole or "report.json" not in files:
+            return None
         with open(report, encoding="utf-8") as f:
             rep = json.load(f)
         same = (os.path.abspath(rep["target"]["path"]) == job.target
                 and _same_reference(rep["reference"], job.reference)
-                and rep["options"].get("extent") == (job.extent or settings.options.extent))
-    except (OSError, ValueError, KeyError, TypeError):
+                and rep.get("request") == run_request(method, None, options, settings.accept_unverified)
+                and rep.get("output_options") == json.loads(json.dumps(asdict(settings.output))))
+    except (OSError, ValueError, KeyError, TypeError, HamtaError):
         return None
     if not same:
         return None
-    record = from_report(job, job.method or settings.method, rep.get("timings_s", {}).get("total", 0.0), rep)
+    record = from_report(job, method, rep.get("timings_s", {}).get("total", 0.0), rep)
     record["resumed"] = True
     return record
 

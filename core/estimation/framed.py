@@ -10,12 +10,13 @@ with the exact CRS transformation keeps the model simple and the result exact.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Optional
 
 import numpy as np
 from affine import Affine
 from pyproj import Transformer
 
-from ..coords import as_xy, gdal_coefficients, map_to_pixel, pixel_to_map
+from ..coords import as_xy, continue_longitudes, gdal_coefficients, map_to_pixel, pixel_to_map
 
 
 @dataclass(frozen=True, eq=False)
@@ -26,6 +27,8 @@ class CrsFrame:
     frame_crs_wkt: str
     reference_transform: Affine
     reference_crs_wkt: str
+    reference_centre: Optional[float] = None  # the central longitude of a geographic reference
+    frame_centre: Optional[float] = None  # and of a geographic target frame
 
     def _transformer(self, src: str, dst: str) -> Transformer:
         return Transformer.from_crs(src, dst, always_xy=True)
@@ -33,12 +36,13 @@ class CrsFrame:
     def to_reference_px(self, frame_px) -> np.ndarray:
         mp = pixel_to_map(self.frame_transform, as_xy(frame_px))
         x, y = self._transformer(self.frame_crs_wkt, self.reference_crs_wkt).transform(mp[:, 0], mp[:, 1])
-        return map_to_pixel(self.reference_transform, np.column_stack([x, y]))
+        return map_to_pixel(self.reference_transform, continue_longitudes(np.column_stack([x, y]),
+                                                                          self.reference_centre))
 
     def from_reference_px(self, reference_px) -> np.ndarray:
         mp = pixel_to_map(self.reference_transform, as_xy(reference_px))
         x, y = self._transformer(self.reference_crs_wkt, self.frame_crs_wkt).transform(mp[:, 0], mp[:, 1])
-        return map_to_pixel(self.frame_transform, np.column_stack([x, y]))
+        return map_to_pixel(self.frame_transform, continue_longitudes(np.column_stack([x, y]), self.frame_centre))
 
     def to_frame_map(self, frame_px) -> np.ndarray:
         return pixel_to_map(self.frame_transform, as_xy(frame_px))
@@ -82,7 +86,8 @@ class FramedModel:
         inner = self.inner.to_dict()
         out = {"type": inner.pop("type"), "target_px_to_reference_px": None, "frame": "target_crs",
                "frame_crs": self.frame.frame_crs_wkt, "frame_transform": gdal_coefficients(self.frame.frame_transform),
-               "target_px_to_frame_px": inner.pop("target_px_to_reference_px")}
+               "target_px_to_frame_px": inner.pop("target_px_to_reference_px"),
+               "reference_centre_lon": self.frame.reference_centre, "frame_centre_lon": self.frame.frame_centre}
         out.update(inner)
         return out
 

@@ -368,7 +368,7 @@ def model_from_dict(d: dict, reference_transform=None, reference_crs_wkt=None):
         inner = dict(d, target_px_to_reference_px=d["target_px_to_frame_px"])
         inner.pop("frame")
         frame = CrsFrame(Affine.from_gdal(*d["frame_transform"]), d["frame_crs"], reference_transform,
-                         reference_crs_wkt)
+                         reference_crs_wkt, d.get("reference_centre_lon"), d.get("frame_centre_lon"))
         return FramedModel(model_from_dict(inner), frame)
     kind = canonical_model(d["type"])
     if kind in LINEAR_KINDS:

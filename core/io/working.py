@@ -24,7 +24,7 @@ from rasterio.warp import Resampling, reproject
 from rasterio.windows import Window
 from shapely.geometry import Polygon, box
 
-from ..coords import as_xy, compose, map_to_pixel, pixel_to_map, raster_outline
+from ..coords import as_xy, compose, continue_longitudes, map_to_pixel, pixel_to_map, raster_outline
 from ..errors import GeoreferencingError, InputError, NoOverlapError
 from ..options import TARGET_GEOREF
 from .raster import RasterInfo, budget_shape, read_image
@@ -52,13 +52,26 @@ class ScaledWindow:
 
 
 @dataclass(frozen=True, eq=False)
+class MapLink:
+    """Map coordinates of one CRS -> another; longitudes of a geographic destination are continued next
+    to the destination raster's centre (``centre``, see :func:`hamta.core.coords.continue_longitudes`)."""
+
+    transformer: Transformer
+    centre: Optional[float] = None
+
+    def __call__(self, xy: np.ndarray) -> np.ndarray:
+        x, y = self.transformer.transform(xy[:, 0], xy[:, 1])
+        return continue_longitudes(np.column_stack([x, y]), self.centre)
+
+
+@dataclass(frozen=True, eq=False)
 class ReprojectedGrid:
     """Working pixels of a grid in one CRS -> source pixels of a raster in another CRS."""
 
     grid_transform: Affine
     src_transform: Affine
-    to_src_crs: Optional[Transformer]
-    to_grid_crs: Optional[Transformer]
+    to_src_crs: Optional[MapLink]
+    to_grid_crs: Optional[MapLink]
 
     def forward(self, xy) -> np.ndarray:
         return map_to_pixel(self.src_transform, _reproject_xy(self.to_src_crs, pixel_to_map(self.grid_transform, xy)))
@@ -67,11 +80,8 @@ class ReprojectedGrid:
         return map_to_pixel(self.grid_transform, _reproject_xy(self.to_grid_crs, pixel_to_map(self.src_transform, xy)))
 
 
-def _reproject_xy(transformer: Optional[Transformer], xy: np.ndarray) -> np.ndarray:
-    if transformer is None:
-        return xy
-    x, y = transformer.transform(xy[:, 0], xy[:, 1])
-    return np.column_stack([x, y])
+def _reproject_xy(link: Optional[MapLink], xy: np.ndarray) -> np.ndarray:
+    return xy if link is None else link(xy)
 
 
 @dataclass(frozen=True, eq=False)
@@ -146,12 +156,28 @@ def _prior_usable(target: RasterInfo, reference: RasterInfo, choice: str):
         problem = f"the reference raster '{reference.path}' has no georeferencing"
     elif (target.crs is None) != (reference.crs is None):
         problem = "only one of the two rasters has a CRS, so their coordinates cannot be related"
+    elif not _relatable(target.crs, reference.crs):
+        problem = (f"the target's CRS ({target.crs.to_string() or 'a local one'}) cannot be transformed to the "
+                   f"reference's ({reference.crs.to_string() or 'a local one'}), e.g. a local engineering CRS")
     if problem is None:
         return True, notes
     if choice == "use":
         raise GeoreferencingError(f"Cannot use the target's georeferencing as a starting point: {problem}.")
     notes.append(f"searching the reference (or its search area) without a starting point: {problem}")
     return False, notes
+
+
+def _relatable(a: Optional[CRS], b: Optional[CRS]) -> bool:
+    """Whether PROJ can transform coordinates between two CRSs (a local engineering CRS cannot)."""
+    from pyproj.exceptions import CRSError, ProjError
+
+    if a is None or b is None or a == b:
+        return True
+    try:
+        x, y = Transformer.from_crs(a, b, always_xy=True).transform(0.0, 0.0, errcheck=False)
+        return True
+    except (ProjError, CRSError):
+        return False
 
 
 def _read_whole(info: RasterInfo, bands, max_pixels: int, role: str, window: Optional[Window] = None) -> WorkingImage:
@@ -198,23 +224,34 @@ def _check_content(data, valid, info: RasterInfo, role: str, where: str) -> None
                          f"{float(values[0]):g}); there is nothing to match.")
 
 
-def footprint(info: RasterInfo, crs: Optional[CRS], points_per_side: int = 21) -> Polygon:
-    """Outline of a raster in map coordinates of ``crs`` (its own CRS when equal or None)."""
+def footprint(info: RasterInfo, crs: Optional[CRS], points_per_side: int = 21,
+              centre: Optional[float] = None) -> Polygon:
+    """Outline of a raster in map coordinates of ``crs`` (its own CRS when equal or None); longitudes of
+    a geographic ``crs`` are continued next to ``centre`` (see :class:`MapLink`)."""
     edge = raster_outline(info.width, info.height, points_per_side)
-    xy = _reproject_xy(_transformer(info.crs, crs), pixel_to_map(info.transform, edge))
+    xy = pixel_to_map(info.transform, edge)
+    link = _link(info.crs, crs, centre)
+    xy = _reproject_xy(link, xy) if link is not None else continue_longitudes(xy, centre)
     poly = Polygon(xy[np.all(np.isfinite(xy), axis=1)])
     return poly if poly.is_valid else poly.buffer(0)
 
 
-def _transformer(src: Optional[CRS], dst: Optional[CRS]) -> Optional[Transformer]:
+def _link(src: Optional[CRS], dst: Optional[CRS], centre: Optional[float] = None) -> Optional[MapLink]:
     if src is None or dst is None or src == dst:
         return None
-    return Transformer.from_crs(src, dst, always_xy=True)
+    return MapLink(Transformer.from_crs(src, dst, always_xy=True), centre)
+
+
+def central_longitude(info: RasterInfo) -> Optional[float]:
+    """The longitude of a geographic raster's centre (None for a projected or unknown CRS)."""
+    if info.crs is None or not info.crs.is_geographic:
+        return None
+    return float(pixel_to_map(info.transform, [(info.width / 2.0, info.height / 2.0)])[0, 0])
 
 
 def _window_of(polygon: Polygon, info: RasterInfo, crs: Optional[CRS], margin_px: float) -> Window:
     """Whole-pixel window of ``info`` covering ``polygon`` (map coordinates in ``crs``) plus a margin."""
-    ring = _reproject_xy(_transformer(crs, info.crs), np.asarray(polygon.exterior.coords))
+    ring = _reproject_xy(_link(crs, info.crs, central_longitude(info)), np.asarray(polygon.exterior.coords))
     px = map_to_pixel(info.transform, ring)
     c0, r0 = np.floor(px.min(axis=0) - margin_px)
     c1, r1 = np.ceil(px.max(axis=0) + margin_px)
@@ -224,8 +261,9 @@ def _window_of(polygon: Polygon, info: RasterInfo, crs: Optional[CRS], margin_px
 
 
 def _prepare_with_prior(target, reference, target_bands, reference_bands, max_pixels, notes):
+    centre = central_longitude(reference)
     ref_poly = footprint(reference, reference.crs)
-    tgt_poly = footprint(target, reference.crs)
+    tgt_poly = footprint(target, reference.crs, centre=centre)
     overlap = ref_poly.intersection(tgt_poly)
     if overlap.is_empty or overlap.area <= 0:
         raise NoOverlapError(
@@ -260,8 +298,9 @@ def _prepare_with_prior(target, reference, target_bands, reference_bands, max_pi
                           Affine.scale(tgt_window.width / t_shape[1], tgt_window.height / t_shape[0]))
     data, valid = _resample_onto(t_data, t_valid, t_transform, target.crs, grid_transform, reference.crs, (rows, cols))
     _check_content(data, valid, target, "target", " where it overlaps the reference")
-    to_source = ReprojectedGrid(grid_transform, target.transform,
-                                _transformer(reference.crs, target.crs), _transformer(target.crs, reference.crs))
+    to_source = ReprojectedGrid(grid_transform, target.transform, _link(reference.crs, target.crs,
+                                                                        central_longitude(target)),
+                                _link(target.crs, reference.crs, centre))
     tgt_img = WorkingImage(data, valid, to_source, target, target_bands, tgt_factor)
     plan = Plan("georeferenced", ref_window, tgt_window, tuple(notes))
     return tgt_img, ref_img, plan

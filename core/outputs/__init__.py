@@ -14,10 +14,10 @@ import uuid
 from dataclasses import dataclass, fields
 from typing import Dict, Iterable, Optional, Tuple
 
-from ..errors import OutputError
+from ..errors import ForeignFiles, OutputError
 from ..options import OutputOptions
 from ..progress import Monitor
-from .atomic import OutputSet, check_output_path, check_writable_folder
+from .atomic import OutputSet, check_output_path, check_writable_folder, published_files, recover
 from .gpkg import is_geopackage, write_gcp_layer
 from .html import write_html_report
 from .model_vrt import write_vrt
@@ -38,6 +38,7 @@ class OutputPaths:
     report: Optional[str] = None
     html: Optional[str] = None
     folder: Optional[str] = None  # a run folder whose whole set of names belongs to Hamta (the CLI layout)
+    overwrite: bool = False  # a run folder's files that Hamta did not write may be replaced
     gpkg_layer: str = "gcps"  # the GCP layer's name; other layers of an existing GeoPackage are kept
 
     LAYOUT = {"raster": "registered.tif", "points": "gcps.points", "gpkg": "gcps.gpkg", "vrt": "gcps.vrt",
@@ -46,7 +47,7 @@ class OutputPaths:
 
     @classmethod
     def in_folder(cls, folder: str, vrt: bool = False, raster_format: str = "gtiff",
-                  only: Optional[Iterable[str]] = None) -> "OutputPaths":
+                  only: Optional[Iterable[str]] = None, overwrite: bool = False) -> "OutputPaths":
         """The CLI layout: registered.tif (registered.vrt in the VRT format), gcps.points, gcps.gpkg,
         report.json, report.html (+ gcps.vrt), or only the outputs named in ``only`` (names of
         :attr:`LAYOUT`; what is not asked for is not computed). Publishing there replaces the folder's
@@ -55,7 +56,7 @@ class OutputPaths:
         names = {k: os.path.join(folder, v) for k, v in cls.LAYOUT.items() if k in wanted}
         if raster_format == "vrt":
             names["raster"] = os.path.join(folder, "registered.vrt")
-        return cls(folder=folder, **names)
+        return cls(folder=folder, overwrite=overwrite, **names)
 
     @classmethod
     def parse(cls, names: Iterable[str]) -> Tuple[str, ...]:
@@ -69,7 +70,7 @@ class OutputPaths:
 
     def as_dict(self) -> Dict[str, str]:
         return {f.name: getattr(self, f.name) for f in fields(self)
-                if getattr(self, f.name) and f.name not in ("folder", "gpkg_layer")}
+                if getattr(self, f.name) and f.name not in ("folder", "gpkg_layer", "overwrite")}
 
     def owned(self) -> Dict[str, tuple]:
         """{folder: names of its set} for the CLI layout, else nothing."""
@@ -82,17 +83,32 @@ class OutputPaths:
         for path in self.as_dict().values():
             check_output_path(path)
 
+    def check_ours(self) -> None:
+        """In a run folder, refuse to replace files Hamta did not write there (the user's own), unless
+        ``overwrite``; a publication a killed run committed there is finished first."""
+        if self.folder is None or self.overwrite or not os.path.isdir(self.folder):
+            return
+        recover(self.folder)
+        ours = published_files(self.folder)
+        foreign = sorted(os.path.basename(p) for p in self.as_dict().values()
+                         if os.path.lexists(p) and os.path.basename(p) not in ours)
+        if foreign:
+            raise ForeignFiles(f"The output folder '{self.folder}' holds {', '.join(foreign)}, which Hamta did not "
+                               "write there; choose another folder, or allow replacing them")
+
 
 def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputOptions(), progress=None,
-                  is_canceled=None) -> Dict[str, str]:
+                  is_canceled=None, request: Optional[dict] = None) -> Dict[str, str]:
     """Write the requested outputs of ``result``; returns {output name: absolute path}.
 
     ``output`` chooses the warped raster's format, CRS, grid, resampling and fill; see
-    :mod:`hamta.core.outputs.warp`.
+    :mod:`hamta.core.outputs.warp`. ``request`` (what the run was asked: method, parameters,
+    options) is kept in ``report.json``, so that a batch resumes a pair only for the same request.
     """
     monitor = Monitor(progress, is_canceled)
     wanted = {k: os.path.abspath(v) for k, v in paths.as_dict().items()}
     paths.check()
+    paths.check_ours()
     for folder in {os.path.dirname(p) for p in wanted.values()}:
         check_writable_folder(folder)
     run_id = uuid.uuid4().hex
@@ -110,7 +126,7 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
             write_gcp_layer(out.temp_for(wanted["gpkg"]), result, paths.gpkg_layer, base=existing)
         if "report" in wanted:
             report = result.to_report()
-            report.update(run_id=run_id, outputs=wanted, output_options=dataclasses.asdict(output))
+            report.update(run_id=run_id, outputs=wanted, output_options=dataclasses.asdict(output), request=request)
             write_report(out.temp_for(wanted["report"]), report)
         if "html" in wanted:
             monitor.report(0.9, "writing the quality report")

@@ -1,15 +1,21 @@
 """Publishing a run's outputs as one set: whole or not at all, never mixed with another run's.
 
 Every file of a run is written into a staging folder beside its destination (same file system,
-so moves are atomic). Publishing then takes the destination folder's lock (``.hamta.lock``,
-``fcntl.flock``: concurrent runs into one folder publish one after the other), moves any file it
-replaces into the staging folder, moves the new files into place, removes files of the folder's
-own set that this run does not write (a rerun without ``--vrt`` drops the old ``gcps.vrt``), and
-writes the folder's manifest (``.hamta-manifest.json``: the run's id and files) last. If a move
-fails, what was moved is put back. Staging folders carry their process id and a tag of their
-host: the next run removes those of processes of this host that no longer exist or were killed and
-not yet reaped (a killed run's leftovers); on a shared file system, another host's are removed once
-a day old, since their process cannot be checked from here.
+so moves are atomic), with the set's manifest (``.hamta-manifest.json``: the run's id and files).
+Publishing takes the destination folder's lock (``.hamta.lock``, ``fcntl.flock``: concurrent runs
+into one folder publish one after the other) and commits by renaming a journal into the folder
+(``.hamta-journal.json``: the staging folder, the files, the names of the folder's previous set this
+run does not write). Then it moves each file it replaces into the staging folder, moves the new
+files into place, moves the previous set's other files away (a rerun without ``--vrt`` drops the
+old ``gcps.vrt``), renames the manifest in and removes the journal. A run killed at any instant
+leaves either no journal (the folder holds the old set; the staging folder is a leftover) or a
+journal the next run in that folder, or a batch resuming it, rolls forward (every step can be
+redone): readers see exactly the old set or exactly the new one. If a move fails while the run is
+alive (a disk error), what was moved is put back. Files the folder's manifest does not list (the
+user's own) are never moved or removed by publishing. Staging folders carry their process id and a
+tag of their host: the next run removes those of processes of this host that no longer exist or
+were killed and not yet reaped (a killed run's leftovers); on a shared file system, another host's
+are removed once a day old, since their process cannot be checked from here.
 """
 from __future__ import annotations
 
@@ -144,38 +150,101 @@ class OutputSet:
 
     def _publish(self, folder: str) -> None:
         staging = self._staging[folder]
-        mine = {f: t for f, t in self._finals.items() if os.path.dirname(f) == folder}
-        stale = [os.path.join(folder, n) for n in self.owned.get(folder, ())
-                 if os.path.join(folder, n) not in mine]
-        backup = os.path.join(staging, "replaced")
-        os.mkdir(backup)
-        moved = []  # (final, backup or None)
+        names = sorted(os.path.basename(f) for f in self._finals if os.path.dirname(f) == folder)
+        with open(os.path.join(staging, MANIFEST), "w", encoding="utf-8") as f:
+            json.dump({"run_id": self.run_id, "published": time.strftime("%Y-%m-%dT%H:%M:%S"),
+                       "files": {n: os.path.getsize(os.path.join(staging, n)) for n in names}}, f, indent=1)
+        os.mkdir(os.path.join(staging, REPLACED))
         with signals_deferred(), folder_lock(folder):
+            _recover_locked(folder)
+            previous = published_files(folder)
+            stale = [n for n in self.owned.get(folder, ()) if n not in names and n in previous]
+            journal = {"run_id": self.run_id, "staging": os.path.basename(staging), "files": names, "stale": stale}
             try:
-                for final in list(mine) + stale:
-                    if os.path.lexists(final):
-                        kept = os.path.join(backup, f"{len(moved)}-{os.path.basename(final)}")
-                        os.replace(final, kept)
-                        moved.append((final, kept))
-                    elif final in mine:
-                        moved.append((final, None))
-                for final, temp in mine.items():
-                    os.replace(temp, final)
-                names = sorted(os.path.basename(f) for f in mine)
-                manifest = os.path.join(staging, MANIFEST)
-                with open(manifest, "w", encoding="utf-8") as f:
-                    json.dump({"run_id": self.run_id, "published": time.strftime("%Y-%m-%dT%H:%M:%S"),
-                               "files": {n: os.path.getsize(os.path.join(folder, n)) for n in names}}, f, indent=1)
-                os.replace(manifest, os.path.join(folder, MANIFEST))
+                _write_durably(os.path.join(staging, JOURNAL), journal)
+                os.replace(os.path.join(staging, JOURNAL), os.path.join(folder, JOURNAL))  # the commit
+                _roll_forward(folder, journal)
             except OSError as err:
-                for final, kept in reversed(moved):
-                    with contextlib.suppress(OSError):
-                        if final in mine and os.path.lexists(final) and not os.path.lexists(mine[final]):
-                            os.remove(final)
-                        if kept is not None:
-                            os.replace(kept, final)
+                with contextlib.suppress(OSError):
+                    _roll_back(folder, journal)
                 raise OutputError(f"Could not publish the outputs in '{folder}' ({err.strerror or err}); the "
                                   "folder was left as it was.") from None
+
+
+REPLACED = "replaced"
+JOURNAL = ".hamta-journal.json"
+
+
+def published_files(folder: str) -> Dict[str, int]:
+    """{name: size} of the set Hamta last published in ``folder`` (its manifest), empty when none."""
+    try:
+        with open(os.path.join(folder, MANIFEST), encoding="utf-8") as f:
+            files = json.load(f).get("files", {})
+        return {str(k): int(v) for k, v in files.items()} if isinstance(files, dict) else {}
+    except (OSError, ValueError, TypeError, AttributeError):
+        return {}
+
+
+def recover(folder: str) -> None:
+    """Finish a publication a killed run committed in ``folder`` (its journal), under the folder's lock."""
+    if os.path.isfile(os.path.join(folder, JOURNAL)):
+        with folder_lock(folder):
+            _recover_locked(folder)
+
+
+def _recover_locked(folder: str) -> None:
+    """Roll a committed publication forward: once its journal is in the folder, the new set is the
+    folder's, whatever instant the run was killed at (every step below can be redone)."""
+    path = os.path.join(folder, JOURNAL)
+    try:
+        with open(path, encoding="utf-8") as f:
+            journal = json.load(f)
+        str(journal["staging"]), list(journal["files"]), list(journal["stale"])
+    except FileNotFoundError:
+        return
+    except (OSError, ValueError, KeyError, TypeError):  # written durably before it was renamed in: not ours
+        raise OutputError(f"The output folder '{folder}' holds an unreadable '{JOURNAL}'; remove it and rerun.")
+    _roll_forward(folder, journal)
+
+
+def _roll_forward(folder: str, journal: dict) -> None:
+    staging = os.path.join(folder, journal["staging"])
+    backup = os.path.join(staging, REPLACED)
+    os.makedirs(backup, exist_ok=True)
+    for name in journal["files"]:
+        new, final = os.path.join(staging, name), os.path.join(folder, name)
+        if os.path.lexists(new):  # not yet moved: the folder's file, if any, is the old one
+            if os.path.lexists(final):
+                os.replace(final, os.path.join(backup, name))
+            os.replace(new, final)
+    for name in journal["stale"]:
+        if os.path.lexists(os.path.join(folder, name)):
+            os.replace(os.path.join(folder, name), os.path.join(backup, name))
+    if os.path.lexists(os.path.join(staging, MANIFEST)):
+        os.replace(os.path.join(staging, MANIFEST), os.path.join(folder, MANIFEST))
+    os.remove(os.path.join(folder, JOURNAL))
+    shutil.rmtree(staging, ignore_errors=True)
+
+
+def _roll_back(folder: str, journal: dict) -> None:
+    """Undo a publication that failed while its run was alive (a disk error): the old set returns."""
+    staging = os.path.join(folder, journal["staging"])
+    backup = os.path.join(staging, REPLACED)
+    for name in journal["files"] + journal["stale"]:
+        new, final, old = (os.path.join(staging, name), os.path.join(folder, name), os.path.join(backup, name))
+        if name in journal["files"] and not os.path.lexists(new) and os.path.lexists(final):
+            os.replace(final, new)
+        if os.path.lexists(old):
+            os.replace(old, final)
+    with contextlib.suppress(FileNotFoundError):
+        os.remove(os.path.join(folder, JOURNAL))
+
+
+def _write_durably(path: str, content: dict) -> None:
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(content, f)
+        f.flush()
+        os.fsync(f.fileno())
 
 
 @contextlib.contextmanager
@@ -222,7 +291,9 @@ def folder_lock(folder: str):
 
 
 def remove_leftovers(folder: str) -> None:
-    """Remove staging folders of runs that no longer exist (see the module docstring)."""
+    """Finish a killed run's committed publication, then remove staging folders of runs that no longer
+    exist (see the module docstring)."""
+    recover(folder)
     try:
         names = os.listdir(folder)
     except OSError:

@@ -39,6 +39,12 @@ def counts_text(stats) -> str:
     return f"{stats.n_gcps} GCPs kept of {stats.n_inliers} agreeing matches (of {stats.n_matches} found)"
 
 
+def unknown_crs_text(result) -> str:
+    return (f"the reference '{result.reference.path}' has a geotransform but no CRS: the outputs carry its "
+            "geotransform, in map units whose CRS is unknown; give the reference its CRS (in QGIS, or gdal_edit.py "
+            "-a_srs) to place them on a map")
+
+
 def pixel_mode_text() -> str:
     return ("pixel-to-pixel registration: the reference has no georeferencing, so coordinates are the reference's "
             "pixels and the outputs carry no CRS")

@@ -14,6 +14,7 @@ models map target pixels to reference pixels (corner convention).
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import warnings
@@ -75,6 +76,61 @@ class Fill:
     nodata: Optional[float]
     alpha: bool
     source: Optional[float]
+
+
+def check_output_options(output: OutputOptions, target, path: str) -> None:
+    """Before any work: GDAL accepts the creation options for the format of the raster written at
+    ``path``, and a nodata value fits its pixel type (the target's, ``target`` a
+    :class:`~hamta.core.io.raster.RasterInfo`). Raises ``ValueError`` naming the option."""
+    fmt = output_format(path, output.format)
+    if output.creation_options and fmt == "vrt":
+        raise ValueError("creation options (--co) apply to the gtiff and cog formats, not to a warped VRT")
+    if output.creation_options:
+        problems = _gdal_complaints(fmt, _creation(COG_OPTIONS if fmt == "cog" else GTIFF_OPTIONS, output))
+        if problems:
+            raise ValueError(f"creation options {', '.join(output.creation_options)}: GDAL's {fmt.upper()} driver "
+                             f"says: {'; '.join(problems)}")
+    if output.fill == "nodata" and output.nodata is not None:
+        kind = numpy_dtype(target.dtype if not target.is_complex else "float32")
+        if np.issubdtype(kind, np.integer):
+            info = np.iinfo(kind)
+            if not (float(output.nodata).is_integer() and info.min <= output.nodata <= info.max):
+                raise ValueError(f"nodata {output.nodata:g} does not fit the pixel type of '{target.path}' "
+                                 f"({kind.name}: whole numbers {info.min} to {info.max})")
+
+
+def _gdal_complaints(fmt: str, creation: dict) -> list:
+    """What GDAL warns about ``creation`` when it writes a 16 x 16 probe in memory (unknown options,
+    values it ignores)."""
+    import logging
+    import uuid
+
+    messages = []
+
+    class Collect(logging.Handler):
+        def emit(self, record):
+            if record.levelno >= logging.WARNING:
+                messages.append(record.getMessage().split(" in ", 1)[-1])
+
+    handler, logger = Collect(), logging.getLogger("rasterio._env")
+    logger.addHandler(handler)
+    plain = f"/vsimem/hamta-probe-{uuid.uuid4().hex}.tif"
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            probe = dict(driver="GTiff", width=16, height=16, count=1, dtype="uint8")
+            with rasterio.open(plain, "w", **(probe if fmt == "cog" else dict(probe, **creation))) as dst:
+                dst.write(np.zeros((1, 16, 16), np.uint8))
+            if fmt == "cog":
+                rasterio.shutil.copy(plain, plain + ".cog.tif", driver="COG", **creation)
+    except (rasterio.errors.RasterioError, ValueError) as exc:
+        messages.append(str(exc))
+    finally:
+        logger.removeHandler(handler)
+        for path in (plain, plain + ".cog.tif"):
+            with contextlib.suppress(Exception):
+                rasterio.shutil.delete(path)
+    return messages
 
 
 def fill_plan(target, dtype: str, output: OutputOptions) -> Fill:
@@ -194,8 +250,10 @@ def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, opt
     dtype = src.dtypes[0]
     profile = dict(driver="GTiff", width=width, height=height, count=count, dtype=dtype, nodata=fill.nodata,
                    **creation)
+    if not result.pixel_mode:  # a reference with a geotransform but no CRS: its map units, CRS unknown
+        profile.update(transform=transform)
     if crs is not None:
-        profile.update(crs=crs, transform=transform)
+        profile.update(crs=crs)
     bands = list(range(1, src.count + 1))
     row_bytes = max(width * count * numpy_dtype(dtype).itemsize, 1)
     rows = max(256, int(STRIP_BYTES // row_bytes) // 256 * 256)

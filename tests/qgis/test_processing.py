@@ -245,13 +245,17 @@ def test_output_control_vrt_crs_html_and_creation_options(provider, demo_pair, t
     assert raster.dataProvider().name() == "gdal" and pathlib.Path(res["OUTPUT"]).read_text().startswith("<VRTDataset")
     assert "data:image/jpeg;base64," in pathlib.Path(res["OUTPUT_HTML"]).read_text()
     del raster
+    with pytest.raises(QgsProcessingException, match="COG driver says: driver COG does not support creation option "
+                                                      "BLOCKXSIZE"):  # the GeoTIFF's option, not the COG's
+        _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "c.tif"),
+                  FORMAT=2, CREATION_OPTIONS="COMPRESS=LZW BLOCKXSIZE=512 BLOCKYSIZE=512", FILL=2, NODATA=255))
     res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "c.tif"),
-                    FORMAT=2, CREATION_OPTIONS="COMPRESS=LZW BLOCKXSIZE=512 BLOCKYSIZE=512", FILL=2, NODATA=255))
+                    FORMAT=2, CREATION_OPTIONS="COMPRESS=LZW BLOCKSIZE=256", FILL=2, NODATA=255))
     import rasterio
 
     with rasterio.open(res["OUTPUT"]) as ds:
         assert ds.compression.name == "lzw" and ds.nodata == 255 and ds.overviews(1)
-        assert ds.block_shapes[0] == (512, 512)
+        assert ds.block_shapes[0] == (256, 256)
 
 
 def test_a_reference_without_georeferencing_needs_the_pixel_mode_box(provider, demo_pair, tmp_path):
