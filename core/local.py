@@ -18,8 +18,6 @@ how far the global model puts that window from where it is.
 from __future__ import annotations
 
 import math
-import os
-from concurrent.futures import as_completed
 from dataclasses import dataclass, replace
 from typing import Callable, Optional
 
@@ -120,17 +118,15 @@ def local_correction(estimate: Estimate, target, target_bands, reference, refere
                           max_points=params.max_points, points="grid", similarity=similarity)
     sites = _thin(grid_points(model, target, reference, refine), max(params.spacing_px, params.window_px / 2.0))
     spacing = _spacing(sites)
-    chunks = [sites[i:i + 256] for i in range(0, len(sites), 256)]
 
-    def measure(chunk):
-        return refine_points(model, chunk, target, target_bands, reference, reference_bands, refine)
+    def measure(chunk, mon=None):
+        return refine_points(model, chunk, target, target_bands, reference, reference_bands, refine, mon)
 
-    if map_chunks is None:
-        parts = _threaded(measure, chunks, monitor.span(0.0, 0.9))
+    if map_chunks is None:  # refine_points measures the windows on this machine's threads
+        points = measure(sites, monitor.span(0.0, 0.9))
     else:
         monitor.report(0.05, "local shifts")
-        parts = map_chunks(measure, chunks)
-    points = _concat(parts)
+        points = _concat(map_chunks(measure, [sites[i:i + 256] for i in range(0, len(sites), 256)]))
     monitor.report(0.9, "local shifts")
     if len(points) < 10:
         raise InsufficientMatchesError(f"Local correction of '{target.path}': only {len(points)} of {len(sites)} "
@@ -208,22 +204,6 @@ def _spacing(sites: np.ndarray) -> float:
         return 0.0
     xs = np.unique(np.round(sites[:, 0], 6))
     return float(np.median(np.diff(xs))) if len(xs) > 1 else 0.0
-
-
-def _threaded(fn, chunks, monitor: Monitor) -> list:
-    """``fn`` over ``chunks`` on a few threads (reading and correlation release the GIL), in order."""
-    from concurrent.futures import ThreadPoolExecutor
-
-    threads = max(1, min(4, os.cpu_count() or 1, len(chunks)))
-    if threads == 1:
-        return [fn(c) for c in chunks]
-    out = [None] * len(chunks)
-    with ThreadPoolExecutor(threads) as pool:
-        futures = {pool.submit(fn, c): i for i, c in enumerate(chunks)}
-        for done, fut in enumerate(as_completed(futures)):
-            out[futures[fut]] = fut.result()
-            monitor.report((done + 1) / len(chunks), "local shifts")
-    return out
 
 
 def _concat(parts) -> Correspondences:

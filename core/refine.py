@@ -10,7 +10,6 @@ Remote Sensing 9(7):676, :DOI:`10.3390/rs9070676`), applied at feature locations
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, replace
 from typing import List, Optional, Tuple
 
@@ -25,6 +24,7 @@ from .estimation.models import LinearModel
 from .estimation.robust import Estimate, RobustRules, robust_linear
 from .estimation.spread import spread_subset
 from .io.raster import RasterInfo, open_dataset, read_image
+from .parallel import threaded
 from .progress import Monitor
 from .types import Correspondences
 
@@ -69,19 +69,7 @@ class RefineParams:
             raise ValueError(f"refinement similarity must be 'ncc' or 'cfog', got {self.similarity!r}")
 
 
-THREADS = min(os.cpu_count() or 1, 4)  # points are refined side by side: GDAL, OpenCV and numpy release the GIL
-
-
-def threaded(fn, items) -> list:
-    """``[fn(x) for x in items]`` on up to ``THREADS`` threads; results keep their order, exceptions propagate."""
-    items = list(items)
-    if THREADS < 2 or len(items) < 2:
-        return [fn(x) for x in items]
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(min(THREADS, len(items))) as pool:
-        return list(pool.map(fn, items))
-
+POINTS_PER_THREAD = 32  # points refined in one piece of work (two datasets opened per piece)
 
 # For images of different modality: CFOG templates on a grid, found in the target at full resolution.
 STRUCTURAL_REFINEMENT = RefineParams(template_px=64, search_px=4, min_ncc=0.1, points="grid", similarity="cfog")
@@ -172,20 +160,15 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
     monitor = monitor or Monitor()
     inverse = model.inverse()
     pts = as_xy(reference_xy)
-    chunks = np.array_split(np.arange(len(pts)), max(1, min(THREADS, len(pts) // 32)))
+    chunks = np.array_split(np.arange(len(pts)), max(1, len(pts) // POINTS_PER_THREAD))
 
     def refine_chunk(index):
-        found = []
         with open_dataset(target) as tds, open_dataset(reference) as rds:  # a dataset is not shared by threads
-            for k, i in enumerate(index):
-                found.append(_refine_one(pts[i], inverse, target, target_bands, tds, reference, reference_bands, rds,
-                                         params.template_px, params.search_px, params.min_ncc, params.similarity))
-                if k % 16 == 0:
-                    monitor.report(k / max(len(index), 1), "refining")
-        return found
+            return [_refine_one(pts[i], inverse, target, target_bands, tds, reference, reference_bands, rds,
+                                params.template_px, params.search_px, params.min_ncc, params.similarity)
+                    for i in index]
 
-    found = [f for chunk in threaded(refine_chunk, chunks) for f in chunk if f is not None]
-    monitor.report(1.0, "refining")
+    found = [f for chunk in threaded(refine_chunk, chunks, monitor, "refining") for f in chunk if f is not None]
     if not found:
         return Correspondences.unfitted(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
     return Correspondences.unfitted(np.array([f[0] for f in found]), np.array([f[1] for f in found]),

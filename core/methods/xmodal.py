@@ -39,8 +39,9 @@ from ..descriptors import rift
 from ..estimation.affine2d import angle_scale, apply, compose, invert, resize, scaling, similarity, warp
 from ..estimation.ransac import ransac_or_none
 from ..matching.pose_check import ShiftCorrelator, TargetPyramid, oriented_channels
+from ..parallel import threaded
 from ..progress import Monitor
-from ..refine import STRUCTURAL_REFINEMENT, threaded
+from ..refine import STRUCTURAL_REFINEMENT
 from ..types import Matches
 from .registry import Method, Toolbox, param, register_method, validate
 

@@ -8,6 +8,8 @@ range) at zero offset.
 """
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 
@@ -60,14 +62,31 @@ def window_sums(a: np.ndarray, side: int) -> np.ndarray:
 
 def margin(surface: np.ndarray, s: int, radius: float) -> float:
     """How far the surface's best value beyond ``radius`` of zero offset exceeds its best value within."""
-    yy, xx = np.mgrid[-s:s + 1, -s:s + 1]
-    inside = xx * xx + yy * yy <= radius * radius
+    inside = _disc(s, radius)
     return float(surface[~inside].max() - surface[inside].max())
 
 
 def zero_score(surface: np.ndarray, s: int) -> float:
     """How far the correlation at zero offset stands above the surface's values 4 px or more away
     (in their standard deviations)."""
-    yy, xx = np.mgrid[-s:s + 1, -s:s + 1]
-    ring = surface[np.maximum(np.abs(xx), np.abs(yy)) >= 4]
+    ring = surface[_ring(s)]
     return float((surface[s, s] - ring.mean()) / max(float(ring.std()), 1e-6))
+
+
+@lru_cache(maxsize=None)
+def _disc(s: int, radius: float) -> np.ndarray:
+    """(2s + 1, 2s + 1) True within ``radius`` of zero offset (a surface's mask, the same for every site)."""
+    yy, xx = np.mgrid[-s:s + 1, -s:s + 1]
+    return _frozen(xx * xx + yy * yy <= radius * radius)
+
+
+@lru_cache(maxsize=None)
+def _ring(s: int) -> np.ndarray:
+    """(2s + 1, 2s + 1) True 4 px or more from zero offset along x or y."""
+    yy, xx = np.mgrid[-s:s + 1, -s:s + 1]
+    return _frozen(np.maximum(np.abs(xx), np.abs(yy)) >= 4)
+
+
+def _frozen(mask: np.ndarray) -> np.ndarray:
+    mask.setflags(write=False)  # shared by every call: read only
+    return mask

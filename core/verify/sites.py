@@ -65,7 +65,8 @@ def site_grid(outline: np.ndarray, overlap, reference: RasterInfo, side: int, pa
     target."""
     if overlap is None:
         return np.zeros((0, 2))
-    lo, hi = _grid_box(outline, reference, side)
+    lo = np.maximum(outline.min(axis=0), 0) + side / 2.0 + 1
+    hi = np.minimum(outline.max(axis=0), [reference.width, reference.height]) - side / 2.0 - 1
     if np.any(hi < lo):
         return np.zeros((0, 2))
     step = step or max(math.sqrt(float(overlap.area) / params.max_sites), float(side))
@@ -85,12 +86,6 @@ def _ticks(c: float, a: float, b: float, step: float) -> np.ndarray:
     even = c + (np.arange(-half, half) + 0.5) * step
     odd, even = odd[(odd >= a) & (odd <= b)], even[(even >= a) & (even <= b)]
     return even if len(even) > len(odd) else odd
-
-
-def _grid_box(outline: np.ndarray, reference: RasterInfo, side: int):
-    lo = np.maximum(outline.min(axis=0), 0) + side / 2.0 + 1
-    hi = np.minimum(outline.max(axis=0), [reference.width, reference.height]) - side / 2.0 - 1
-    return lo, hi
 
 
 def grid_centre(overlap) -> np.ndarray:

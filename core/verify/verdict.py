@@ -105,12 +105,9 @@ def agreement_chance(distance, peak, null_valid, n: int, floor: float, clear_lev
     counts = [((distance <= r) & (peak >= floor), 0.5 * math.pi * r * r / cells)
               for r in [r for r in (1.0, 2.0, 3.0) if r < params.agree_px] + [params.agree_px]]
     counts.append(((distance <= 1.0) & (peak >= clear_level), 0.1 * math.pi / cells))
-    tails = []
-    for hits, uniform in counts:
-        rate = chance_rate(hits[:, 1:], null_valid, uniform)
-        tails.append(binomial_tail(int(hits[:, 0].sum()), n, rate))
-    agree_rate = chance_rate(counts[-2][0][:, 1:], null_valid, counts[-2][1])
-    return min(1.0, min(tails) * len(tails)), agree_rate
+    rates = [chance_rate(hits[:, 1:], null_valid, uniform) for hits, uniform in counts]
+    tails = [binomial_tail(int(hits[:, 0].sum()), n, rate) for (hits, _), rate in zip(counts, rates)]
+    return min(1.0, min(tails) * len(tails)), rates[-2]
 
 
 def turned_agreement(turned, floor: float, rate: float, params: VerifyParams):
