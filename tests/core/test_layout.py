@@ -154,7 +154,7 @@ LAYERS = (
     ("core.version", "core.errors", "core.coords", "core.types", "core.outcome"),
     ("core.extent",),
     ("core.options", "core.progress"),
-    ("core.io", "core.preprocess", "core.detectors", "core.estimation", "core.basemap"),
+    ("core.io", "core.preprocess", "core.detectors", "core.estimation", "core.basemap", "core.parallel"),
     ("core.descriptors",),
     ("core.matching",),
     ("core.refine", "core.verify"),
