@@ -50,6 +50,10 @@ class Monitor:
         if self._deadline is not None and time.perf_counter() > self._deadline:
             raise DeadlineReached("the time budget is spent")
 
+    def silent(self) -> "Monitor":
+        """This monitor without progress reports (for work beside the reporting one); it still cancels."""
+        return Monitor(None, self._is_canceled, deadline=self._deadline)
+
     def until(self, deadline: float) -> "Monitor":
         """This monitor with a ``deadline``."""
         return Monitor(self._progress, self._is_canceled, self._start, self._stop, deadline)

@@ -23,7 +23,8 @@ from .errors import InsufficientMatchesError
 from .estimation.models import LinearModel
 from .estimation.robust import Estimate, RobustRules, robust_linear
 from .estimation.spread import spread_subset
-from .io.raster import RasterInfo, open_dataset, read_image
+from .io.raster import RasterInfo
+from .io.windows import WindowReader
 from .parallel import threaded
 from .progress import Monitor
 from .types import Correspondences
@@ -162,25 +163,25 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
     pts = as_xy(reference_xy)
     chunks = np.array_split(np.arange(len(pts)), max(1, len(pts) // POINTS_PER_THREAD))
 
-    def refine_chunk(index):
-        with open_dataset(target) as tds, open_dataset(reference) as rds:  # a dataset is not shared by threads
-            return [_refine_one(pts[i], inverse, target, target_bands, tds, reference, reference_bands, rds,
-                                params.template_px, params.search_px, params.min_ncc, params.similarity)
-                    for i in index]
+    with WindowReader(target, target_bands) as targets, WindowReader(reference, reference_bands) as references:
+        def refine_chunk(index):
+            return [_refine_one(pts[i], inverse, targets, references, params.template_px, params.search_px,
+                                params.min_ncc, params.similarity) for i in index]
 
-    found = [f for chunk in threaded(refine_chunk, chunks, monitor, "refining") for f in chunk if f is not None]
+        found = [f for chunk in threaded(refine_chunk, chunks, monitor, "refining") for f in chunk if f is not None]
     if not found:
         return Correspondences.unfitted(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
     return Correspondences.unfitted(np.array([f[0] for f in found]), np.array([f[1] for f in found]),
                                     np.array([f[2] for f in found]))
 
 
-def _refine_one(p, inverse, target, target_bands, tds, reference, reference_bands, rds, t, s, min_ncc, similarity):
+def _refine_one(p, inverse, targets: WindowReader, references: WindowReader, t, s, min_ncc, similarity):
     """One refined (target px, reference px, ncc), or None when the point cannot be refined."""
+    target, reference = targets.info, references.info
     x0, y0 = int(np.floor(p[0])) - t // 2, int(np.floor(p[1])) - t // 2
     if x0 < 0 or y0 < 0 or x0 + t > reference.width or y0 + t > reference.height:
         return None
-    tmpl, tmpl_ok = read_image(reference, reference_bands, Window(x0, y0, t, t), dataset=rds)
+    tmpl, tmpl_ok = references.read(Window(x0, y0, t, t))
     tmpl = _filled(tmpl, tmpl_ok)
     if tmpl is None or tmpl.std() < 1e-6:
         return None
@@ -191,7 +192,7 @@ def _refine_one(p, inverse, target, target_bands, tds, reference, reference_band
     c1, r1 = np.ceil(src.max(axis=0)).astype(int) + 2
     if c0 < 0 or r0 < 0 or c1 > target.width or r1 > target.height:
         return None
-    patch, patch_ok = read_image(target, target_bands, Window(c0, r0, c1 - c0, r1 - r0), dataset=tds)
+    patch, patch_ok = targets.read(Window(c0, r0, c1 - c0, r1 - r0))
     patch = _filled(patch, patch_ok)
     if patch is None:
         return None

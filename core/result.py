@@ -8,7 +8,7 @@ from typing import List, Optional
 
 import numpy as np
 
-from .basemap.fetch import redact
+from .basemap.redact import redact
 from .coords import as_xy, gdal_coefficients, pixel_to_map
 from .estimation.robust import FinalFit
 from .io.raster import RasterInfo
@@ -132,17 +132,19 @@ def _window_list(w) -> list:
 
 
 def versions() -> dict:
-    """Versions of Hamta and the libraries that shaped a result."""
+    """Versions of Hamta and the libraries that shaped a result; scipy, pyproj and PROJ are None when this
+    process never loaded them (a pixel-mode run needs no PROJ, and importing it costs a tenth of a second)."""
+    import sys
+
     import cv2
-    import pyproj
     import rasterio
-    import scipy
     import shapely
 
+    scipy, pyproj = sys.modules.get("scipy"), sys.modules.get("pyproj")
     return {"hamta": __version__, "python": platform.python_version(), "numpy": np.__version__,
-            "scipy": scipy.__version__, "opencv": cv2.__version__, "rasterio": rasterio.__version__,
-            "gdal": rasterio.__gdal_version__, "pyproj": pyproj.__version__, "proj": pyproj.proj_version_str,
-            "shapely": shapely.__version__}
+            "scipy": getattr(scipy, "__version__", None), "opencv": cv2.__version__, "rasterio": rasterio.__version__,
+            "gdal": rasterio.__gdal_version__, "pyproj": getattr(pyproj, "__version__", None),
+            "proj": getattr(pyproj, "proj_version_str", None), "shapely": shapely.__version__}
 
 
 def params_dict(params) -> dict:

@@ -14,7 +14,7 @@ from typing import Dict, Optional, Tuple
 from .auto import AUTO
 from .basemap.services import parse_service
 from .errors import OutputError, UnverifiedResult
-from .io.raster import input_files, open_raster
+from .io.raster import described_once, input_files, open_raster
 from .methods import get_method
 from .options import OutputOptions, RegisterOptions
 from .outputs import OutputPaths, write_outputs
@@ -23,12 +23,12 @@ from .outputs.tags import verdict_text
 from .outputs.warp import check_output_options
 from .pipeline import register
 from .progress import Monitor
-from .remote import register_remote
 from .result import RegistrationResult
 
 REGISTER_SHARE = 0.8
 
 
+@described_once()
 def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str = AUTO, params=None,
         options: RegisterOptions = RegisterOptions(), output: OutputOptions = OutputOptions(),
         accept_unverified: bool = False, progress=None, is_canceled=None, map_chunks=None, fetcher=None
@@ -64,6 +64,8 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
     stage = monitor.span(0.0, share)
     if service is not None:
+        from .remote import register_remote  # its network code is imported only for a map service
+
         result = register_remote(target, service, options, stage, fetcher=fetcher, method=method, params=params,
                                  map_chunks=map_chunks)
     else:

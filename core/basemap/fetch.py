@@ -9,7 +9,6 @@ from __future__ import annotations
 import hashlib
 import http.client
 import os
-import re
 import socket
 import tempfile
 import threading
@@ -23,6 +22,7 @@ from urllib.parse import urlsplit
 
 from ..errors import InputError, RegistrationCanceled
 from ..version import __version__
+from .redact import redact
 
 RETRY_STATUS = (429, 500, 502, 503, 504)  # worth asking again after a pause
 MISSING_STATUS = (204, 404)  # a tile outside the layer's coverage: empty, not a failure
@@ -218,25 +218,3 @@ def host(url: str) -> str:
     """The host (and port) of ``url``, without credentials."""
     parts = urlsplit(url)
     return parts.hostname + (f":{parts.port}" if parts.port else "") if parts.hostname else url
-
-
-SECRET_KEYS = frozenset((
-    "key", "token", "apikey", "api_key", "access_token", "access_key", "password", "passwd", "signature", "sig",
-    "x-amz-signature", "x-amz-credential", "x-amz-security-token", "app_code", "client_id", "client_secret",
-    "subscription-key"))
-
-
-def redact(text: str) -> str:
-    """``text`` (a URL, or a GDAL string holding one: ``/vsicurl/https://…``, ``WMTS:https://…``) without
-    user name, password or key-like query values, for messages and reports; other text unchanged."""
-    from urllib.parse import parse_qsl, urlencode, urlunsplit
-
-    found = re.search(r"(https?|ftp)://", text)
-    if found is None:
-        return text
-    prefix, url = text[:found.start()], text[found.start():]
-    parts = urlsplit(url)
-    netloc = (parts.hostname or "") + (f":{parts.port}" if parts.port else "")
-    query = [(k, "***" if k.lower() in SECRET_KEYS else v) for k, v in parse_qsl(parts.query, keep_blank_values=True)]
-    text = urlunsplit((parts.scheme, netloc, parts.path, urlencode(query, safe="{}/,:*"), ""))
-    return prefix + text.replace("%7B", "{").replace("%7D", "}")

@@ -17,7 +17,7 @@ from typing import Optional, Tuple
 from urllib.parse import parse_qsl, urlencode
 
 from ..errors import InputError
-from .fetch import redact
+from .redact import redact
 
 WEB_MERCATOR = "EPSG:3857"
 HALF_WORLD = 20037508.342789244  # metres from the centre of EPSG:3857 to its edge

@@ -16,7 +16,8 @@ from typing import Tuple
 import numpy as np
 
 from ..errors import InputError
-from .fetch import Fetcher, ServiceError, host, redact
+from .fetch import Fetcher, ServiceError, host
+from .redact import redact
 from .services import TileService
 
 Bounds = Tuple[float, float, float, float]  # xmin, ymin, xmax, ymax in the service's grid CRS

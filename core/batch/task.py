@@ -20,7 +20,7 @@ import time
 from dataclasses import dataclass, replace
 from typing import Optional
 
-from ..basemap.fetch import redact
+from ..basemap.redact import redact
 from ..basemap.services import parse_service, redact_source
 from ..coords import raster_outline
 from ..errors import HamtaError, MethodCrashed, UnverifiedResult

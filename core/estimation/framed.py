@@ -14,7 +14,6 @@ from typing import Optional
 
 import numpy as np
 from affine import Affine
-from pyproj import Transformer
 
 from ..coords import as_xy, continue_longitudes, gdal_coefficients, map_to_pixel, pixel_to_map
 
@@ -30,7 +29,9 @@ class CrsFrame:
     reference_centre: Optional[float] = None  # the central longitude of a geographic reference
     frame_centre: Optional[float] = None  # and of a geographic target frame
 
-    def _transformer(self, src: str, dst: str) -> Transformer:
+    def _transformer(self, src: str, dst: str):
+        from pyproj import Transformer  # imported when needed: pixel-mode runs never are
+
         return Transformer.from_crs(src, dst, always_xy=True)
 
     def to_reference_px(self, frame_px) -> np.ndarray:

@@ -11,6 +11,7 @@ import contextlib
 import math
 import os
 import warnings
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Optional, Tuple
 
@@ -95,14 +96,44 @@ def open_raster(path, role: str = "input") -> RasterInfo:
     if os.path.exists(path) and not os.path.isfile(path):  # reading a pipe or a device would wait forever
         raise InputError(f"The {role} raster '{path}' is not a regular file (a pipe, socket or device); save the "
                          "raster to a file first.")
+    memo = _MEMO.get()
+    key = _file_key(path) if memo is not None else None
+    if key is not None and key in memo:
+        return memo[key]
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NotGeoreferencedWarning)
             with rasterio.open(path) as ds:
-                return _describe(ds, path, role)
+                info = _describe(ds, path, role)
     except (RasterioError, OSError, RecursionError) as exc:
         raise InputError(f"The {role} raster '{path}' is not a raster GDAL can read, or it is truncated or corrupt "
                          f"({str(exc).strip() or type(exc).__name__}).") from None
+    if key is not None:
+        memo[key] = info
+    return info
+
+
+_MEMO: ContextVar[Optional[dict]] = ContextVar("hamta_described", default=None)
+
+
+@contextlib.contextmanager
+def described_once():
+    """Within this block (one job), :func:`open_raster` describes each local file once: a run opens its
+    inputs more than once, and describing one samples its pixels for a collar."""
+    token = _MEMO.set({})
+    try:
+        yield
+    finally:
+        _MEMO.reset(token)
+
+
+def _file_key(path: str):
+    """A local file's path and what changes with its content (None for other paths: a ``/vsi`` path, a
+    subdataset or a URL is described afresh every time)."""
+    if not os.path.isfile(path):
+        return None
+    st = os.stat(path)
+    return path, os.path.abspath(path), st.st_ino, st.st_size, st.st_mtime_ns
 
 
 def _describe(ds, path: str, role: str) -> RasterInfo:

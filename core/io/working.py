@@ -18,7 +18,6 @@ from typing import Optional, Tuple
 
 import numpy as np
 from affine import Affine
-from pyproj import Transformer
 from rasterio.crs import CRS
 from rasterio.warp import Resampling, reproject
 from rasterio.windows import Window
@@ -56,7 +55,7 @@ class MapLink:
     """Map coordinates of one CRS -> another; longitudes of a geographic destination are continued next
     to the destination raster's centre (``centre``, see :func:`hamta.core.coords.continue_longitudes`)."""
 
-    transformer: Transformer
+    transformer: object  # a pyproj Transformer
     centre: Optional[float] = None
 
     def __call__(self, xy: np.ndarray) -> np.ndarray:
@@ -174,6 +173,8 @@ def _relatable(a: Optional[CRS], b: Optional[CRS]) -> bool:
     if a is None or b is None or a == b:
         return True
     try:
+        from pyproj import Transformer
+
         x, y = Transformer.from_crs(a, b, always_xy=True).transform(0.0, 0.0, errcheck=False)
         return True
     except (ProjError, CRSError):
@@ -239,6 +240,8 @@ def footprint(info: RasterInfo, crs: Optional[CRS], points_per_side: int = 21,
 def _link(src: Optional[CRS], dst: Optional[CRS], centre: Optional[float] = None) -> Optional[MapLink]:
     if src is None or dst is None or src == dst:
         return None
+    from pyproj import Transformer  # imported when needed: pixel-mode runs never are
+
     return MapLink(Transformer.from_crs(src, dst, always_xy=True), centre)
 
 

@@ -11,6 +11,7 @@ import dataclasses
 import errno
 import os
 import uuid
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, fields
 from typing import Dict, Iterable, Optional, Tuple
 
@@ -113,7 +114,11 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
         check_writable_folder(folder)
     run_id = uuid.uuid4().hex
     result = dataclasses.replace(result, run_id=run_id)
-    with OutputSet(run_id, paths.owned()) as out, write_errors_named():
+    with OutputSet(run_id, paths.owned()) as out, write_errors_named(), ThreadPoolExecutor(1) as aside:
+        html = None
+        if "html" in wanted:  # beside the other writers (its figures and GDAL's warping both release the GIL)
+            html = aside.submit(write_html_report, out.temp_for(wanted["html"]), result, monitor.silent(),
+                                outputs=wanted)
         if "raster" in wanted:
             write_warped(out.temp_for(wanted["raster"]), result, output, monitor.span(0.0, 0.85),
                          scratch=out.scratch(wanted["raster"]))
@@ -128,9 +133,9 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
             report = result.to_report()
             report.update(run_id=run_id, outputs=wanted, output_options=dataclasses.asdict(output), request=request)
             write_report(out.temp_for(wanted["report"]), report)
-        if "html" in wanted:
+        if html is not None:
             monitor.report(0.9, "writing the quality report")
-            write_html_report(out.temp_for(wanted["html"]), result, monitor.span(0.9, 1.0), outputs=wanted)
+            html.result()
         monitor.check()  # the last moment a cancel stops the run: publishing is not interrupted
     monitor.report(1.0, "done")
     return wanted

@@ -7,7 +7,7 @@ QGIS and GDAL use, with ``useAsDefault``), so the layer opens styled in any QGIS
 """
 from __future__ import annotations
 
-from xml.sax.saxutils import quoteattr
+from html import escape
 
 STYLE_NAME = "Hamta GCPs by residual"
 # (filter on the layer's fields, legend label, marker shape, fill colour, size mm)
@@ -35,7 +35,7 @@ def _symbol(index: int, shape: str, colour: str, size: float) -> str:
 
 def style_qml() -> str:
     """The QML document of the default style."""
-    rules = "".join(f'<rule key="rule{i}" filter={quoteattr(f)} label={quoteattr(label)} symbol="{i}"/>'
+    rules = "".join(f'<rule key="rule{i}" filter={_attr(f)} label={_attr(label)} symbol="{i}"/>'
                     for i, (f, label, *_rest) in enumerate(RULES))
     symbols = "".join(_symbol(i, shape, colour, size) for i, (_f, _l, shape, colour, size) in enumerate(RULES))
     return ("<!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>"
@@ -60,3 +60,9 @@ def write_default_style(con, layer: str, geometry_column: str = "geom") -> None:
                 "VALUES ('', '', ?, ?, ?, ?, '', 1, ?, '', '')",
                 (layer, geometry_column, STYLE_NAME, style_qml(),
                  "GCPs coloured by residual (reference px); rejected matches as grey crosses"))
+
+
+def _attr(text: str) -> str:
+    """``text`` as a quoted XML attribute value (what ``xml.sax.saxutils.quoteattr`` gives, without
+    importing the network modules it pulls in)."""
+    return '"' + escape(text, quote=True).replace("\n", "&#10;").replace("\r", "&#13;").replace("\t", "&#9;") + '"'

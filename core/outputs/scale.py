@@ -10,7 +10,6 @@ from dataclasses import dataclass
 from typing import Optional, Tuple
 
 import numpy as np
-from pyproj import CRS as ProjCRS
 
 from ..estimation.models import local_jacobian
 from ..io.raster import RasterInfo
@@ -23,6 +22,8 @@ UNIT_SYMBOLS = {"metre": "m", "meter": "m", "kilometre": "km", "degree": "°", "
 def describe_crs(crs) -> Tuple[str, str]:
     """``('WGS 84 / UTM zone 32N (EPSG:32632)', 'metre')``: a CRS's name with its EPSG code (when it
     has one) and the unit of its first axis (``'unknown unit'`` without axes)."""
+    from pyproj import CRS as ProjCRS
+
     pcrs = ProjCRS.from_user_input(crs.to_wkt())
     code = pcrs.to_epsg()
     name = f"{pcrs.name} (EPSG:{code})" if code else f"{pcrs.name} (no EPSG code)"

@@ -42,9 +42,11 @@ from typing import Optional
 import numpy as np
 
 from ..descriptors.cfog import peak_offset
-from ..io.raster import RasterInfo, open_dataset
+from ..io.raster import RasterInfo
+from ..io.windows import WindowReader
+from ..parallel import threaded
 from ..progress import Monitor
-from .correlation import SearchSpectrum, TemplateSpectrum, margin, turned, zero_score
+from .correlation import SearchSpectrum, TemplateSpectrum, fast_length, margin, zero_score
 from .field import error_field, fit_field, model_error
 from .params import VERDICTS, Verification, VerifyParams
 from .sites import (
@@ -97,12 +99,11 @@ def verify(model, target: RasterInfo, target_bands, reference: RasterInfo, refer
     side = template_side(overlap, params)
     params = replace(params, template_px=side)
     extent = overlap_grid(overlap)
-    with open_dataset(target) as tds, open_dataset(reference) as rds:
+    with WindowReader(target, target_bands) as targets, WindowReader(reference, reference_bands) as references:
         def read(points, mon):
             out = []
             for i, p in enumerate(points):
-                out.append(read_site(model, p, target, target_bands, tds, reference, reference_bands, rds, side,
-                                     params.search_px))
+                out.append(read_site(model, p, targets, references, side, params.search_px))
                 if i % 16 == 0:
                     mon.report(i / max(len(points), 1), "verifying")
             return out
@@ -144,46 +145,52 @@ def correlate(pairs, reflected, side: int, params: VerifyParams, monitor: Monito
     against the target at its own site (column 0) and, for chance, at ``NULL_PARTNERS`` other sites and
     turned or mirrored at ``NULL_TURNS`` of those; ``turned`` is (offsets, peaks) of the model turned by
     180 degrees about the grid's centre: the site's template turned, against the target at the site's
-    reflection (``reflected``, a pair or None per site)."""
-    stacks = [None if p is None else descriptors(p) for p in pairs]
+    reflection (``reflected``, a pair or None per site). Sites are prepared and compared on threads."""
     n = len(pairs)
     columns = 1 + NULL_PARTNERS + NULL_TURNS
     offsets = np.full((n, columns, 2), np.nan)
     peaks = np.full((n, columns), np.nan)
     zero_z = np.full((n, columns), np.nan)
     margins = np.full((n, columns), np.nan)
+    turned_offsets, turned_peaks = np.full((n, 2), np.nan), np.full(n, np.nan)
     s = params.search_px
-    shape = (side + 2 * s,) * 2
-    usable = [i for i in range(n) if stacks[i] is not None]
-    tmpls = {i: TemplateSpectrum(stacks[i][0], shape) for i in usable}
-    patches = {i: SearchSpectrum(stacks[i][1], side) for i in usable}
+    shape = (fast_length(side + 2 * s),) * 2
+
+    def prepare(pair):
+        template, search = descriptors(pair)
+        spectrum = TemplateSpectrum(template, shape)
+        return (spectrum,) + spectrum.turned(), SearchSpectrum(search, side, shape)
+
+    usable = [i for i in range(n) if pairs[i] is not None]
+    extra = list({id(p): p for i in usable for p in [reflected[i]] if p is not None and
+                  all(p is not pairs[j] for j in usable)}.values())
+    prepared = threaded(prepare, [pairs[i] for i in usable] + extra, monitor.span(0.0, 0.5), "verifying")
+    templates = dict(zip(usable, (t for t, _ in prepared)))
+    spectra = {id(p): a for p, (_, a) in zip([pairs[i] for i in usable] + extra, prepared)}
     m = len(usable)
-    for rank, i in enumerate(usable):
+
+    def compare(rank: int):
+        i = usable[rank]
         step = max(m // (NULL_PARTNERS + 1), 1)
         others = [usable[(rank + k * step) % m] for k in range(1, NULL_PARTNERS + 1)]
-        comparisons = [(i, tmpls[i])] + [(j, tmpls[i]) for j in others]
-        comparisons += [(j, TemplateSpectrum(t, shape)) for j, t in zip(others, turned(stacks[i][0]))]
+        comparisons = [(i, templates[i][0])] + [(j, templates[i][0]) for j in others]
+        comparisons += list(zip(others, templates[i][1:]))
+        rows = []
         for c, (j, template) in enumerate(comparisons):
             if c > 0 and j == i:
                 continue
-            surface = patches[j].ncc(template, s)
-            zero_z[i, c] = zero_score(surface, s)
-            margins[i, c] = margin(surface, s, params.agree_px)
-            offset, peaks[i, c] = peak_offset(surface, s)
+            surface = spectra[id(pairs[j])].ncc(template, s)
+            rows.append((c, zero_score(surface, s), margin(surface, s, params.agree_px)) + peak_offset(surface, s))
+        turn = None if reflected[i] is None else peak_offset(spectra[id(reflected[i])].ncc(templates[i][1], s), s)
+        return rows, turn
+
+    for i, (rows, turn) in zip(usable, threaded(compare, range(m), monitor.span(0.5, 1.0), "verifying")):
+        for c, z, g, offset, peak in rows:
+            zero_z[i, c], margins[i, c], peaks[i, c] = z, g, peak
             if offset is not None:
                 offsets[i, c] = offset
-        if rank % 8 == 0:
-            monitor.report(rank / max(m, 1), "verifying")
-    turned_offsets, turned_peaks = np.full((n, 2), np.nan), np.full(n, np.nan)
-    spectra = {id(p): patches[i] for i, p in enumerate(pairs) if i in patches}
-    for i in usable:
-        pair = reflected[i]
-        if pair is None:
-            continue
-        if id(pair) not in spectra:
-            spectra[id(pair)] = SearchSpectrum(descriptors(pair)[1], side)
-        surface = spectra[id(pair)].ncc(TemplateSpectrum(turned(stacks[i][0])[0], shape), s)
-        offset, turned_peaks[i] = peak_offset(surface, s)
-        if offset is not None:
-            turned_offsets[i] = offset
+        if turn is not None:
+            turned_peaks[i] = turn[1]
+            if turn[0] is not None:
+                turned_offsets[i] = turn[0]
     return offsets, peaks, zero_z, margins, (turned_offsets, turned_peaks)

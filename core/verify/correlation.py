@@ -8,6 +8,7 @@ range) at zero offset.
 """
 from __future__ import annotations
 
+import copy
 from functools import lru_cache
 
 import numpy as np
@@ -21,22 +22,38 @@ def turned(stack: np.ndarray):
 
 
 class TemplateSpectrum:
-    """A (C, t, t) descriptor template, zero-mean over all channels, as the spectrum of its
+    """A (C, t, t) descriptor template, zero-mean over all channels, as the conjugate spectrum of its
     zero-padded ``shape`` canvas, with its norm."""
 
     def __init__(self, template: np.ndarray, shape):
         t = template - template.mean()
         self.norm = float(np.sqrt((t ** 2).sum()))
         self.spectrum = np.conj(np.fft.rfft2(t, shape, axes=(1, 2)))
-        self.size = template.size
+        self.size, self.side = template.size, template.shape[-1]
+
+    def turned(self) -> tuple:
+        """The spectra of the :func:`turned` templates, from this one: turning or mirroring a real
+        template conjugates its spectrum or reverses its frequencies, times a phase ramp (no FFT)."""
+        c, n, half = self.spectrum.shape
+        both, x, y = _ramps(n, half, self.side)
+        reverse = np.r_[0, np.arange(c - 1, 0, -1)]
+        flipped_y = np.conj(self.spectrum[reverse][:, (-np.arange(n)) % n])
+        spectra = (both * self.spectrum, x * np.conj(flipped_y), y * flipped_y)
+        return tuple(self._with(np.conj(g)) for g in spectra)
+
+    def _with(self, spectrum: np.ndarray) -> "TemplateSpectrum":
+        other = copy.copy(self)
+        other.spectrum = spectrum
+        return other
 
 
 class SearchSpectrum:
-    """A (C, t + 2s, t + 2s) descriptor search area as spectra, with its window sums for NCC."""
+    """A (C, t + 2s, t + 2s) descriptor search area as spectra of its zero-padded ``shape`` canvas (at least
+    the area's size; any larger size gives the same surface), with its window sums for NCC."""
 
-    def __init__(self, search: np.ndarray, side: int):
-        self.spectrum = np.fft.rfft2(search, axes=(1, 2))
-        self.shape = search.shape[1:]
+    def __init__(self, search: np.ndarray, side: int, shape=None):
+        self.shape = tuple(shape or search.shape[1:])
+        self.spectrum = np.fft.rfft2(search, self.shape, axes=(1, 2))
         self.s1 = window_sums(search.sum(axis=0, dtype=np.float64), side)
         self.s2 = window_sums((search.astype(np.float64) ** 2).sum(axis=0), side)
 
@@ -46,6 +63,27 @@ class SearchSpectrum:
         s1, s2 = self.s1[:2 * s + 1, :2 * s + 1], self.s2[:2 * s + 1, :2 * s + 1]
         var = np.maximum(s2 - s1 ** 2 / template.size, 0.0)
         return num / np.maximum(np.sqrt(var) * template.norm, 1e-9)
+
+
+@lru_cache(maxsize=None)
+def _ramps(n: int, half: int, side: int):
+    """Phase ramps that move a turned or mirrored ``side`` px template back to the canvas's corner: in
+    both axes, in x, in y (read only, shared)."""
+    ky, kx = np.arange(n)[:, None], np.arange(half)[None, :]
+    ramp = -2j * np.pi * (side - 1) / n
+    return tuple(_frozen(np.exp(ramp * k)) for k in (ky + kx, kx + 0 * ky, ky + 0 * kx))
+
+
+def fast_length(n: int) -> int:
+    """The smallest length >= ``n`` with no prime factor above 5 (where FFTs are fastest)."""
+    while True:
+        m = n
+        for p in (2, 3, 5):
+            while m % p == 0:
+                m //= p
+        if m == 1:
+            return n
+        n += 1
 
 
 def window_sums(a: np.ndarray, side: int) -> np.ndarray:

@@ -20,7 +20,8 @@ from shapely.prepared import prep
 from ..coords import raster_outline
 from ..descriptors.cfog import central_differences, cfog, gaussian_blur
 from ..estimation.models import local_jacobian
-from ..io.raster import RasterInfo, read_image
+from ..io.raster import RasterInfo
+from ..io.windows import WindowReader
 from .params import VerifyParams
 
 
@@ -125,15 +126,16 @@ def inverse_at(model, p: np.ndarray, target: RasterInfo) -> Optional[Tuple[np.nd
     return q, np.linalg.inv(j)
 
 
-def read_site(model, p, target, target_bands, tds, reference, reference_bands, rds, side: int, search: int):
+def read_site(model, p, targets: WindowReader, references: WindowReader, side: int, search: int):
     """The reference template at ``p`` (and its valid pixels) and the target resampled through the model
     onto the template's search area (and its valid pixels); None when the site cannot be compared
     (outside an image, masked pixels, no structure)."""
     t, s = side, search
+    target, reference = targets.info, references.info
     x0, y0 = int(math.floor(p[0])) - t // 2, int(math.floor(p[1])) - t // 2
     if x0 < 0 or y0 < 0 or x0 + t > reference.width or y0 + t > reference.height:
         return None
-    tmpl, ok = read_image(reference, reference_bands, Window(x0, y0, t, t), dataset=rds)
+    tmpl, ok = references.read(Window(x0, y0, t, t))
     if ok.mean() < 0.95 or tmpl[ok].std() < 1e-6:
         return None
     inverse = inverse_at(model, np.asarray(p, float), target)
@@ -148,7 +150,7 @@ def read_site(model, p, target, target_bands, tds, reference, reference_bands, r
     if c1 <= 0 or r1 <= 0 or c0 >= target.width or r0 >= target.height or (c1 - c0) * (r1 - r0) > 16 * size * size:
         return None
     # The window may reach past the target (a turned square's bounding box); what is sampled must not.
-    patch, pok = read_image(target, target_bands, Window(c0, r0, c1 - c0, r1 - r0), dataset=tds)
+    patch, pok = targets.read(Window(c0, r0, c1 - c0, r1 - r0))
     if pok.mean() < 0.5:
         return None
     patch = np.where(pok, patch, patch[pok].mean()).astype(np.float64)

@@ -5,7 +5,7 @@ import os
 import numpy as np
 import pytest
 
-from hamta.core.basemap.fetch import redact
+from hamta.core.basemap.redact import redact
 from hamta.core.basemap.services import HALF_WORLD, parse_service, redact_source
 from hamta.core.basemap.tiles import tile_range
 from hamta.core.errors import InputError, NoOverlapError

@@ -1,0 +1,67 @@
+"""Many small full-resolution windows of one raster, as :func:`hamta.core.io.raster.read_image` reads
+them: what the refinement and the check read at hundreds of sites. A small raster is read whole once
+and its windows cut from memory (a JPEG, or any file without tiles, is decoded from its start for every
+window GDAL reads); a large one is read window by window through one open dataset per thread.
+Coordinates: windows in whole full-resolution pixels of the raster (corner convention).
+"""
+from __future__ import annotations
+
+import dataclasses
+import threading
+
+import numpy as np
+from rasterio.windows import Window
+
+from .raster import RasterInfo, open_dataset, read_image
+
+HOLD_PIXELS = 4_000_000  # largest raster held whole: 20 MB of grey image and mask, read once
+
+
+class WindowReader:
+    """Grey windows and their validity (as :func:`read_image` returns them) of ``info``'s ``bands``; use as
+    a context manager. One reader may be shared by threads."""
+
+    def __init__(self, info: RasterInfo, bands, hold_pixels: int = HOLD_PIXELS):
+        self.info, self.bands = info, tuple(bands)
+        self._hold = info.width * info.height <= hold_pixels
+        self._held = None
+        self._local = threading.local()
+        self._opened = []
+        self._lock = threading.Lock()
+
+    def __enter__(self) -> "WindowReader":
+        if self._hold:  # the collar is masked per window below, as read_image masks it
+            self._held = read_image(dataclasses.replace(self.info, collar_fill=None), self.bands)
+        return self
+
+    def __exit__(self, *exc):
+        for ds in self._opened:
+            ds.close()
+        self._opened.clear()
+        self._held = None
+        return False
+
+    def read(self, window: Window):
+        """(image, valid) of ``window``, parts outside the raster invalid and 0."""
+        if self._held is None:
+            return read_image(self.info, self.bands, window, dataset=self._dataset())
+        image, valid = self._held
+        c0, r0, w, h = int(window.col_off), int(window.row_off), int(window.width), int(window.height)
+        out, ok = np.zeros((h, w), np.float32), np.zeros((h, w), bool)
+        x0, y0 = max(c0, 0), max(r0, 0)
+        x1, y1 = min(c0 + w, self.info.width), min(r0 + h, self.info.height)
+        if x1 > x0 and y1 > y0:
+            out[y0 - r0:y1 - r0, x0 - c0:x1 - c0] = image[y0:y1, x0:x1]
+            ok[y0 - r0:y1 - r0, x0 - c0:x1 - c0] = valid[y0:y1, x0:x1]
+        if self.info.collar_fill is not None:
+            ok &= ~self.info.collar_fill.window_mask(c0, r0, w, h, (h, w))
+            out[~ok] = 0
+        return out, ok
+
+    def _dataset(self):
+        ds = getattr(self._local, "ds", None)
+        if ds is None:  # a GDAL dataset is not shared by threads
+            ds = self._local.ds = open_dataset(self.info)
+            with self._lock:
+                self._opened.append(ds)
+        return ds
