@@ -2,10 +2,12 @@
 
 Reading (GDAL), OpenCV, FFTs and large numpy operations release the GIL, so threads share the cores
 without copying the images. Results keep their order whatever finishes first, so a run gives the same
-answer on any number of cores.
+answer on any number of cores, and so do errors: the first item's error is raised. Each piece runs in
+the caller's context (the run's open files, see :mod:`hamta.core.io.scope`).
 """
 from __future__ import annotations
 
+import contextvars
 import os
 from typing import Callable, Optional
 
@@ -28,11 +30,14 @@ def threaded(fn: Callable, items, monitor: Optional[Monitor] = None, message: st
             if monitor is not None:
                 monitor.report((i + 1) / len(items), message)
         return out
-    out = [None] * len(items)
     with ThreadPoolExecutor(threads) as pool:
-        futures = {pool.submit(fn, x): i for i, x in enumerate(items)}
-        for done, future in enumerate(as_completed(futures)):
-            out[futures[future]] = future.result()
-            if monitor is not None:
-                monitor.report((done + 1) / len(items), message)
-    return out
+        futures = [pool.submit(contextvars.copy_context().run, fn, x) for x in items]
+        try:
+            for done, _ in enumerate(as_completed(futures)):
+                if monitor is not None:
+                    monitor.report((done + 1) / len(items), message)
+        except BaseException:  # canceled: what has not started does not start
+            for f in futures:
+                f.cancel()
+            raise
+    return [f.result() for f in futures]

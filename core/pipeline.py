@@ -19,6 +19,7 @@ from .errors import ReferenceNotGeoreferenced, method_crashes
 from .estimation.framed import CrsFrame
 from .estimation.robust import RobustRules, final_fit, robust_linear
 from .io.raster import RasterInfo, check_on_earth, open_raster, resolve_bands
+from .io.scope import run_scope
 from .io.working import Plan, WorkingImage, central_longitude, prepare_working_images
 from .local import LocalParams, local_correction
 from .methods import get_method
@@ -31,6 +32,7 @@ from .types import Correspondences
 from .verify import VerifyParams, verify
 
 
+@run_scope()
 def register(target, reference, method: str = AUTO, params=None, options: RegisterOptions = RegisterOptions(),
              progress=None, is_canceled=None, map_chunks=None, target_pixels=None) -> RegistrationResult:
     """Register the ``target`` raster onto the ``reference`` raster, and verify the result.

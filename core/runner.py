@@ -14,13 +14,15 @@ from typing import Dict, Optional, Tuple
 from .auto import AUTO
 from .basemap.services import parse_service
 from .errors import OutputError, UnverifiedResult
-from .io.raster import described_once, input_files, open_raster
+from .io.raster import input_files, open_raster
+from .io.scope import run_scope
 from .methods import get_method
 from .options import OutputOptions, RegisterOptions
 from .outputs import OutputPaths, write_outputs
 from .outputs.atomic import check_creatable_folder
 from .outputs.tags import verdict_text
 from .outputs.warp import check_output_options
+from .parallel import threaded
 from .pipeline import register
 from .progress import Monitor
 from .result import RegistrationResult
@@ -28,7 +30,7 @@ from .result import RegistrationResult
 REGISTER_SHARE = 0.8
 
 
-@described_once()
+@run_scope()
 def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str = AUTO, params=None,
         options: RegisterOptions = RegisterOptions(), output: OutputOptions = OutputOptions(),
         accept_unverified: bool = False, progress=None, is_canceled=None, map_chunks=None, fetcher=None
@@ -56,7 +58,8 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
         get_method(method).make_params(params)  # a wrong name or parameter fails before any work
     service = parse_service(reference)
     if paths is not None and paths.as_dict():
-        inputs = [open_raster(target, "target")] + ([] if service else [open_raster(reference, "reference")])
+        inputs = threaded(lambda job: open_raster(*job), [(target, "target")] + ([] if service else
+                                                                                 [(reference, "reference")]))
         check_destinations(paths, inputs)
         if paths.raster:
             check_output_options(output, inputs[0], paths.raster)

@@ -264,7 +264,8 @@ class ThinPlateSplineModel:
 
     def apply(self, xy, max_cells: int = 4_000_000) -> np.ndarray:
         """Evaluate in chunks of points so that the kernel matrix stays within ``max_cells`` values
-        (memory bounded however many control points there are)."""
+        (memory bounded however many control points there are). No BLAS: its threads would spin beside
+        the threads that call this (the warp's tiles), and its sums differ between library builds."""
         q = self._q(xy)
         c = (self.control - self.center) / self.scale
         c2 = (c ** 2).sum(axis=1)
@@ -272,9 +273,10 @@ class ThinPlateSplineModel:
         chunk = max(1, max_cells // max(len(c), 1))
         for i in range(0, len(q), chunk):
             part = q[i:i + chunk]
-            r2 = np.maximum((part ** 2).sum(axis=1)[:, None] + c2[None, :] - 2.0 * part @ c.T, 0.0)
-            affine = np.column_stack([np.ones(len(part)), part]) @ self.affine
-            out[i:i + chunk] = _tps_kernel(r2) @ self.weights + affine
+            cross = part[:, :1] * c[None, :, 0] + part[:, 1:] * c[None, :, 1]
+            r2 = np.maximum((part ** 2).sum(axis=1)[:, None] + c2[None, :] - 2.0 * cross, 0.0)
+            affine = self.affine[0] + part[:, :1] * self.affine[1] + part[:, 1:] * self.affine[2]
+            out[i:i + chunk] = np.einsum("ij,jk->ik", _tps_kernel(r2), self.weights) + affine
         return out
 
     def residuals(self, src, dst) -> np.ndarray:

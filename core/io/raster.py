@@ -11,7 +11,6 @@ import contextlib
 import math
 import os
 import warnings
-from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import Optional, Tuple
 
@@ -24,6 +23,13 @@ from rasterio.windows import Window
 
 from ..errors import InputError
 from .collar import SAMPLE_PIXELS, Collar, find_collar
+from .scope import current, dataset_for, file_key
+
+# Plain images (pixel mode) and nodata shadowing an alpha band are expected here; rasterio's warnings about
+# them tell a user nothing. Filtered for the process too: ``warnings.catch_warnings`` is not thread-safe
+# (the refinement, the check and the writers read on threads), so a block's filter may be undone.
+warnings.filterwarnings("ignore", category=NotGeoreferencedWarning)
+warnings.filterwarnings("ignore", category=NodataShadowWarning)
 
 SUPPORTED_DTYPES = ("uint8", "int8", "uint16", "int16", "uint32", "int32", "float32", "float64",
                     "complex64", "complex128", "complex_int16")
@@ -96,44 +102,19 @@ def open_raster(path, role: str = "input") -> RasterInfo:
     if os.path.exists(path) and not os.path.isfile(path):  # reading a pipe or a device would wait forever
         raise InputError(f"The {role} raster '{path}' is not a regular file (a pipe, socket or device); save the "
                          "raster to a file first.")
-    memo = _MEMO.get()
-    key = _file_key(path) if memo is not None else None
-    if key is not None and key in memo:
-        return memo[key]
+    files = current()
+    key = file_key(path) if files is not None else None
+    if key is not None and key in files.described:
+        return files.described[key]
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", NotGeoreferencedWarning)
-            with rasterio.open(path) as ds:
-                info = _describe(ds, path, role)
+        with dataset_for(path) as ds:
+            info = _describe(ds, path, role)
     except (RasterioError, OSError, RecursionError) as exc:
         raise InputError(f"The {role} raster '{path}' is not a raster GDAL can read, or it is truncated or corrupt "
                          f"({str(exc).strip() or type(exc).__name__}).") from None
     if key is not None:
-        memo[key] = info
+        files.described[key] = info
     return info
-
-
-_MEMO: ContextVar[Optional[dict]] = ContextVar("hamta_described", default=None)
-
-
-@contextlib.contextmanager
-def described_once():
-    """Within this block (one job), :func:`open_raster` describes each local file once: a run opens its
-    inputs more than once, and describing one samples its pixels for a collar."""
-    token = _MEMO.set({})
-    try:
-        yield
-    finally:
-        _MEMO.reset(token)
-
-
-def _file_key(path: str):
-    """A local file's path and what changes with its content (None for other paths: a ``/vsi`` path, a
-    subdataset or a URL is described afresh every time)."""
-    if not os.path.isfile(path):
-        return None
-    st = os.stat(path)
-    return path, os.path.abspath(path), st.st_ino, st.st_size, st.st_mtime_ns
 
 
 def _describe(ds, path: str, role: str) -> RasterInfo:
@@ -257,19 +238,18 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
     inside = (window.col_off >= 0 and window.row_off >= 0 and window.col_off + window.width <= info.width
               and window.row_off + window.height <= info.height)
     full_shape = (len(bands),) + tuple(shape)
-    with warnings.catch_warnings(), _read_errors_named(info):
-        warnings.simplefilter("ignore", NotGeoreferencedWarning)
+    with warnings.catch_warnings(), _read_errors_named(info), dataset_for(info.path, dataset) as ds:
+        warnings.simplefilter("ignore", NotGeoreferencedWarning)  # also for callers that raise on warnings
         warnings.simplefilter("ignore", NodataShadowWarning)  # nodata and an alpha band: GDAL uses the nodata
-        with (_borrowed(dataset) if dataset is not None else rasterio.open(info.path)) as ds:
-            if info.is_complex and decimating:
-                data = _read_amplitude_by_strips(ds, bands, window, shape, not inside)
-            else:
-                resampling = Resampling.average if decimating else Resampling.nearest
-                data = ds.read(bands, window=window, out_shape=full_shape, resampling=resampling,
-                               boundless=not inside, fill_value=0)
-                data = np.abs(data) if info.is_complex else data
-            masks = ds.read_masks(bands, window=window, out_shape=full_shape,
-                                  resampling=Resampling.nearest, boundless=not inside)
+        if info.is_complex and decimating:
+            data = _read_amplitude_by_strips(ds, bands, window, shape, not inside)
+        else:
+            resampling = Resampling.average if decimating else Resampling.nearest
+            data = ds.read(bands, window=window, out_shape=full_shape, resampling=resampling,
+                           boundless=not inside, fill_value=0)
+            data = np.abs(data) if info.is_complex else data
+        masks = ds.read_masks(bands, window=window, out_shape=full_shape,
+                              resampling=Resampling.nearest, boundless=not inside)
     data = data.astype(np.float32, copy=False)
     valid = np.all(masks > 0, axis=0) & np.all(np.isfinite(data), axis=0)
     if info.collar_fill is not None:
@@ -290,24 +270,9 @@ def _read_errors_named(info: RasterInfo):
                          f"refers to is missing ({str(exc).strip() or type(exc).__name__}).") from None
 
 
-class _borrowed:
-    """Context manager that lends an already open dataset without closing it."""
-
-    def __init__(self, ds):
-        self.ds = ds
-
-    def __enter__(self):
-        return self.ds
-
-    def __exit__(self, *exc):
-        return False
-
-
 def open_dataset(info: RasterInfo):
     """Open ``info.path`` for repeated :func:`read_image` calls (use as a context manager)."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", NotGeoreferencedWarning)
-        return rasterio.open(info.path)
+    return rasterio.open(info.path)
 
 
 def _read_amplitude_by_strips(ds, bands, window, out_shape, boundless):
@@ -352,11 +317,9 @@ def budget_shape(width: float, height: float, max_pixels: int) -> Tuple[Tuple[in
 
 def input_files(info: RasterInfo) -> Tuple[str, ...]:
     """Every file reading ``info`` touches: the raster, its sidecars, a VRT's sources."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", NotGeoreferencedWarning)
-        try:
-            with rasterio.open(info.path) as ds:
-                files = tuple(ds.files)
-        except RasterioError:
-            files = ()
+    try:
+        with rasterio.open(info.path) as ds:
+            files = tuple(ds.files)
+    except RasterioError:
+        files = ()
     return (info.path,) + files

@@ -1,7 +1,9 @@
 """Many small full-resolution windows of one raster, as :func:`hamta.core.io.raster.read_image` reads
 them: what the refinement and the check read at hundreds of sites. A small raster is read whole once
 and its windows cut from memory (a JPEG, or any file without tiles, is decoded from its start for every
-window GDAL reads); a large one is read window by window through one open dataset per thread.
+window GDAL reads). A larger one is read window by window: within a run (:func:`hamta.core.io.scope.run_scope`)
+through the run's dataset, whose blocks GDAL decoded when the run described the file, else through one
+open dataset per thread.
 Coordinates: windows in whole full-resolution pixels of the raster (corner convention).
 """
 from __future__ import annotations
@@ -12,9 +14,11 @@ import threading
 import numpy as np
 from rasterio.windows import Window
 
-from .raster import RasterInfo, open_dataset, read_image
+from .raster import RasterInfo, numpy_dtype, open_dataset, read_image
+from .scope import current, file_key
 
 HOLD_PIXELS = 4_000_000  # largest raster held whole: 20 MB of grey image and mask, read once
+SHARED_BYTES = 512 * 2 ** 20  # largest raster read through the run's dataset (what GDAL's block cache may keep)
 
 
 class WindowReader:
@@ -25,6 +29,8 @@ class WindowReader:
         self.info, self.bands = info, tuple(bands)
         self._hold = info.width * info.height <= hold_pixels
         self._held = None
+        size = info.width * info.height * info.count * numpy_dtype(info.dtype).itemsize
+        self._files = current() if size <= SHARED_BYTES and file_key(info.path) is not None else None
         self._local = threading.local()
         self._opened = []
         self._lock = threading.Lock()
@@ -43,6 +49,10 @@ class WindowReader:
 
     def read(self, window: Window):
         """(image, valid) of ``window``, parts outside the raster invalid and 0."""
+        if self._held is None and self._files is not None:
+            ds, lock = self._files.dataset(self.info.path)
+            with lock:
+                return read_image(self.info, self.bands, window, dataset=ds)
         if self._held is None:
             return read_image(self.info, self.bands, window, dataset=self._dataset())
         image, valid = self._held

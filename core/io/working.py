@@ -26,6 +26,7 @@ from shapely.geometry import Polygon, box
 from ..coords import as_xy, compose, continue_longitudes, map_to_pixel, pixel_to_map, raster_outline
 from ..errors import GeoreferencingError, InputError, NoOverlapError
 from ..options import TARGET_GEOREF
+from ..parallel import threaded
 from .raster import RasterInfo, budget_shape, read_image
 
 # Any projected CRS lets GDAL resample between two grids that share an unnamed CRS.
@@ -139,8 +140,9 @@ def prepare_working_images(target: RasterInfo, reference: RasterInfo, *, target_
         return _prepare_with_prior(target, reference, target_bands, reference_bands, max_pixels, notes)
     mode = "search" if reference.georeferenced else "pixel"
     window = reference.window() if extent is None else _search_window(reference, extent)
-    tgt = _read_whole(target, target_bands, min(max_pixels, target_pixels or max_pixels), "target")
-    ref = _read_whole(reference, reference_bands, max_pixels, "reference", window)
+    tgt, ref = threaded(lambda job: _read_whole(*job), [
+        (target, target_bands, min(max_pixels, target_pixels or max_pixels), "target"),
+        (reference, reference_bands, max_pixels, "reference", window)])
     return tgt, ref, Plan(mode, window, target.window(), tuple(notes))
 
 
@@ -289,13 +291,12 @@ def _prepare_with_prior(target, reference, target_bands, reference_bands, max_pi
     grid_transform = compose(reference.transform, Affine.translation(grid.col_off, grid.row_off),
                              Affine.scale(grid.sx, grid.sy))
 
-    ref_data, ref_valid = read_image(reference, reference_bands, ref_window, (rows, cols))
-    _check_content(ref_data, ref_valid, reference, "reference", " where it overlaps the target")
-    ref_img = WorkingImage(ref_data, ref_valid, grid, reference, reference_bands, factor)
-
     tgt_factor = max(1.0, gsd / gsd_tgt)
     t_shape = (max(1, int(round(tgt_window.height / tgt_factor))), max(1, int(round(tgt_window.width / tgt_factor))))
-    t_data, t_valid = read_image(target, target_bands, tgt_window, t_shape)
+    (ref_data, ref_valid), (t_data, t_valid) = threaded(lambda job: read_image(*job), [
+        (reference, reference_bands, ref_window, (rows, cols)), (target, target_bands, tgt_window, t_shape)])
+    _check_content(ref_data, ref_valid, reference, "reference", " where it overlaps the target")
+    ref_img = WorkingImage(ref_data, ref_valid, grid, reference, reference_bands, factor)
     _check_content(t_data, t_valid, target, "target", " where it overlaps the reference")
     t_transform = compose(target.transform, Affine.translation(tgt_window.col_off, tgt_window.row_off),
                           Affine.scale(tgt_window.width / t_shape[1], tgt_window.height / t_shape[0]))

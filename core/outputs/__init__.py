@@ -16,11 +16,12 @@ from dataclasses import dataclass, fields
 from typing import Dict, Iterable, Optional, Tuple
 
 from ..errors import ForeignFiles, OutputError
+from ..io.scope import release_datasets
 from ..options import OutputOptions
 from ..progress import Monitor
 from .atomic import OutputSet, check_output_path, check_writable_folder, published_files, recover
 from .gpkg import is_geopackage, write_gcp_layer
-from .html import write_html_report
+from .html import read_previews, write_html_report
 from .model_vrt import write_vrt
 from .points import write_points
 from .report import write_report
@@ -117,8 +118,10 @@ def write_outputs(result, paths: OutputPaths, *, output: OutputOptions = OutputO
     with OutputSet(run_id, paths.owned()) as out, write_errors_named(), ThreadPoolExecutor(1) as aside:
         html = None
         if "html" in wanted:  # beside the other writers (its figures and GDAL's warping both release the GIL)
+            previews = read_previews(result)
             html = aside.submit(write_html_report, out.temp_for(wanted["html"]), result, monitor.silent(),
-                                outputs=wanted)
+                                outputs=wanted, previews=previews)
+        release_datasets()  # nothing reads the inputs' blocks again: GDAL may free them for the warp
         if "raster" in wanted:
             write_warped(out.temp_for(wanted["raster"]), result, output, monitor.span(0.0, 0.85),
                          scratch=out.scratch(wanted["raster"]))

@@ -43,7 +43,7 @@ VERDICT_CSS = {"verified": ("#1b7f3b", "#e3f4e8"), "suspect": ("#9a5b00", "#fff1
 
 
 def write_html_report(path: str, result, monitor: Optional[Monitor] = None, *,
-                      outputs: Optional[Mapping[str, str]] = None) -> None:
+                      outputs: Optional[Mapping[str, str]] = None, previews=None) -> None:
     """Write the visual report of ``result`` to ``path`` as one self-contained HTML file.
 
     Parameters
@@ -59,6 +59,8 @@ def write_html_report(path: str, result, monitor: Optional[Monitor] = None, *,
         The files of the run, {kind: path} as :func:`hamta.core.outputs.write_outputs` returns them
         (``raster``, ``points``, ``gpkg``, ``vrt``, ``report``, ``html``); listed on the page.
         ``path`` may be a staging name: the page lists these paths, not ``path``.
+    previews : (Preview, Preview), optional
+        The reference's and the target's previews (:func:`read_previews`), when already read.
 
     Notes
     -----
@@ -68,8 +70,7 @@ def write_html_report(path: str, result, monitor: Optional[Monitor] = None, *,
     """
     monitor = monitor or Monitor()
     monitor.report(0.0, "report: previews")
-    ref = read_preview(result.reference, result.options.get("reference_band"))
-    tgt = read_preview(result.target, result.options.get("target_band"))
+    ref, tgt = previews or read_previews(result)
     monitor.report(0.4, "report: warping the target")
     warped, warped_ok = warp_to_reference(result.model, tgt, ref)
     monitor.report(0.6, "report: figures")
@@ -79,6 +80,12 @@ def write_html_report(path: str, result, monitor: Optional[Monitor] = None, *,
     with open(path, "w", encoding="utf-8") as f:
         f.write(page)
     monitor.report(1.0, "report written")
+
+
+def read_previews(result) -> tuple:
+    """The reference's and the target's previews (the bands the registration used)."""
+    return (read_preview(result.reference, result.options.get("reference_band")),
+            read_preview(result.target, result.options.get("target_band")))
 
 
 CSS = """

@@ -13,7 +13,6 @@ from __future__ import annotations
 import contextlib
 import os
 import tempfile
-import warnings
 import xml.etree.ElementTree as ET
 from typing import Optional
 
@@ -21,7 +20,6 @@ import numpy as np
 import rasterio
 import rasterio.shutil
 from affine import Affine
-from rasterio.errors import NotGeoreferencedWarning
 
 from ..coords import affine_to_matrix, pixel_to_map
 from .tags import verdict_tags
@@ -80,9 +78,7 @@ def write_vrt(path: str, result, gcp_rows: Optional[np.ndarray] = None, geotrans
     source = os.path.abspath(result.target.path)
     with scratch_dir(scratch) as tmp:
         plain = os.path.join(tmp, f"plain-{os.getpid()}.vrt")
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", NotGeoreferencedWarning)
-            rasterio.shutil.copy(source, plain, driver="VRT")
+        rasterio.shutil.copy(source, plain, driver="VRT")
         tree = ET.parse(plain)
         root = tree.getroot()
         for el in root.iter("SourceFilename"):  # a mosaic or a stack keeps each of its own sources

@@ -5,8 +5,9 @@ approximate transformer samples: with the ~2000 grid points of a local correctio
 of seconds per scene. Here the exact inverse of the model (output pixel -> target pixel, by chord
 steps on the model itself, :mod:`hamta.core.estimation.inverse`; GDAL fits a second spline the
 other way) is computed on a lattice of output pixels (:func:`lattice_px`) and interpolated
-bilinearly in between, and the target is resampled tile by tile (bounded memory) with exact
-weights by ``scipy.ndimage.map_coordinates`` (OpenCV 4's ``remap`` rounds positions to 1/32 px).
+bilinearly in between, and the target is resampled tile by tile (bounded memory; tiles side by side
+on threads) with exact weights by ``scipy.ndimage.map_coordinates`` (OpenCV 4's ``remap`` rounds
+positions to 1/32 px).
 
 Used for nearest neighbour and bilinear (the default), the kernels GDAL computes the same way;
 any other choice goes through GDAL as before. Pixels are valid where the sample point falls inside
@@ -18,6 +19,7 @@ convention; array index ``i`` is the pixel centre ``i + 0.5``).
 """
 from __future__ import annotations
 
+import threading
 from typing import Optional
 
 import numpy as np
@@ -28,8 +30,9 @@ from rasterio.windows import Window
 from ..coords import map_to_pixel
 from ..estimation.inverse import invert_model
 from ..io.raster import numpy_dtype
+from ..parallel import threaded
 
-TILE_PX = 1024
+TILE_PX = 512
 KERNELS = {"nearest": 0, "bilinear": 1}  # spline order in scipy.ndimage; the same kernels as GDAL's
 DTYPES = ("uint8", "uint16", "int16", "uint32", "int32", "float32", "float64")
 
@@ -50,13 +53,17 @@ def spline_rows(src, bands, result, grid, fill, resampling: str, r0: int, n: int
         out[:len(bands)] = fill.nodata
     alpha = np.iinfo(dtype).max if np.issubdtype(dtype, np.integer) else 255  # as GDAL's warper
     step = lattice_px(result.model)
-    for t0 in range(0, n, TILE_PX):
-        for c0 in range(0, width, TILE_PX):
-            h, w = min(TILE_PX, n - t0), min(TILE_PX, width - c0)
-            xs, ys = target_positions(result, transform, crs, c0, r0 + t0, w, h, step)
-            tile, valid = _resample(src, bands, xs, ys, fill, resampling)
-            if tile is None:
-                continue
+    tiles = [(t0, c0, min(TILE_PX, n - t0), min(TILE_PX, width - c0))
+             for t0 in range(0, n, TILE_PX) for c0 in range(0, width, TILE_PX)]
+    reading = threading.Lock()  # ``src`` is read by one thread at a time
+
+    def one(tile):
+        t0, c0, h, w = tile
+        xs, ys = target_positions(result, transform, crs, c0, r0 + t0, w, h, step)
+        return _resample(src, bands, xs, ys, fill, resampling, reading)
+
+    for (t0, c0, h, w), (tile, valid) in zip(tiles, threaded(one, tiles)):
+        if tile is not None:
             view = out[:, t0:t0 + h, c0:c0 + w]
             for b in range(len(bands)):
                 view[b][valid] = tile[b][valid]
@@ -101,7 +108,7 @@ def lattice_px(model) -> int:
     return int(np.clip(gap / 4.0, 8, 64))
 
 
-def _resample(src, bands, xs, ys, fill, resampling: str) -> tuple:
+def _resample(src, bands, xs, ys, fill, resampling: str, reading) -> tuple:
     """(tile (bands, h, w), valid (h, w)) for the target positions ``xs``, ``ys``; (None, None) when
     no position falls inside the target."""
     from scipy.ndimage import map_coordinates
@@ -115,7 +122,8 @@ def _resample(src, bands, xs, ys, fill, resampling: str) -> tuple:
     y0 = max(int(np.floor(ys[inside].min())) - 2, 0)
     x1 = min(int(np.ceil(xs[inside].max())) + 2, src.width)
     y1 = min(int(np.ceil(ys[inside].max())) + 2, src.height)
-    data = src.read(list(bands), window=Window(x0, y0, x1 - x0, y1 - y0))
+    with reading:
+        data = src.read(list(bands), window=Window(x0, y0, x1 - x0, y1 - y0))
     coords = np.stack([np.where(inside, ys - y0 - 0.5, 0.0), np.where(inside, xs - x0 - 0.5, 0.0)])
     valid = inside
     bad = _invalid(data, fill.source)

@@ -19,6 +19,7 @@ import math
 import os
 import warnings
 import xml.etree.ElementTree as ET
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
@@ -28,7 +29,6 @@ import rasterio.shutil
 from affine import Affine
 from rasterio.crs import CRS
 from rasterio.enums import Resampling
-from rasterio.errors import NotGeoreferencedWarning
 from rasterio.vrt import WarpedVRT
 from rasterio.warp import reproject
 from rasterio.warp import transform as transform_points
@@ -45,7 +45,7 @@ from .spline_warp import spline_applies, spline_rows
 from .tags import verdict_tags
 
 PLACEHOLDER_CRS = CRS.from_epsg(3857)  # lets GDAL warp between two grids of a raster without CRS
-STRIP_BYTES = 48 * 2 ** 20  # one strip of output rows (all bands) in memory at a time
+STRIP_BYTES = 32 * 2 ** 20  # a strip of output rows (all bands); two are in memory at a time
 WARP_MEMORY_MB = 256
 THREADS = max(1, min(os.cpu_count() or 1, 4))
 # NUM_THREADS: DEFLATE compresses blocks on every core (a third of the writing time on two).
@@ -215,21 +215,19 @@ def write_warped(path: str, result, output: OutputOptions = OutputOptions(), mon
     with scratch_dir(scratch) as tmp:
         vrt = os.path.join(tmp, f"model-{os.getpid()}.vrt")
         options = write_model_vrt(vrt, result, warp_crs.to_wkt(), scratch=tmp)
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", NotGeoreferencedWarning)
-            with rasterio.open(vrt) as src:
-                fill = fill_plan(result.target, src.dtypes[0], output)
-                grid = (transform, width, height, crs, warp_crs)
-                if fmt == "vrt":
-                    _write_warped_vrt(path, src, result, grid, fill, output, options)
-                elif fmt == "cog":
-                    staged = os.path.join(tmp, f"cog-{os.getpid()}.tif")
-                    _write_gtiff(staged, src, result, grid, fill, output, options, monitor.span(0.0, 0.8), {})  # plain
-                    monitor.report(0.8, "writing overviews")
-                    rasterio.shutil.copy(staged, path, driver="COG", **_creation(COG_OPTIONS, output))
-                else:
-                    _write_gtiff(path, src, result, grid, fill, output, options, monitor,
-                                 _creation(GTIFF_OPTIONS, output))
+        with rasterio.open(vrt) as src:
+            fill = fill_plan(result.target, src.dtypes[0], output)
+            grid = (transform, width, height, crs, warp_crs)
+            if fmt == "vrt":
+                _write_warped_vrt(path, src, result, grid, fill, output, options)
+            elif fmt == "cog":
+                staged = os.path.join(tmp, f"cog-{os.getpid()}.tif")
+                _write_gtiff(staged, src, result, grid, fill, output, options, monitor.span(0.0, 0.8), {})  # plain
+                monitor.report(0.8, "writing overviews")
+                rasterio.shutil.copy(staged, path, driver="COG", **_creation(COG_OPTIONS, output))
+            else:
+                _write_gtiff(path, src, result, grid, fill, output, options, monitor,
+                             _creation(GTIFF_OPTIONS, output))
     monitor.report(1.0, "writing")
     return fmt
 
@@ -259,24 +257,31 @@ def _write_gtiff(path, src, result, grid, fill: Fill, output: OutputOptions, opt
     rows = max(256, int(STRIP_BYTES // row_bytes) // 256 * 256)
     resampling = gdal_resampling(output.resampling)
     own = spline_applies(result, dtype, output.resampling)
-    with rasterio.open(path, "w", **profile) as dst:
-        for r0 in range(0, height, rows):
+
+    def strip(r0: int) -> np.ndarray:
+        n = min(rows, height - r0)
+        if own:
+            return spline_rows(src, bands, result, grid, fill, output.resampling, r0, n)
+        block = np.zeros((count, n, width), dtype=numpy_dtype(dtype))
+        if fill.nodata is not None:
+            block[:] = fill.nodata
+        reproject(rasterio.band(src, bands), block, src_nodata=fill.source,
+                  dst_transform=compose(transform, Affine.translation(0, r0)), dst_crs=warp_crs,
+                  dst_nodata=fill.nodata, dst_alpha=count if fill.alpha else 0, resampling=resampling,
+                  num_threads=THREADS, warp_mem_limit=WARP_MEMORY_MB, **options)
+        return block
+
+    starts = list(range(0, height, rows))
+    # The next strip is warped while this one is compressed and written (two strips in memory).
+    with rasterio.open(path, "w", **profile) as dst, ThreadPoolExecutor(1) as ahead:
+        pending = ahead.submit(strip, starts[0])
+        for i, r0 in enumerate(starts):
             monitor.check()
-            n = min(rows, height - r0)
-            if own:
-                dst.write(spline_rows(src, bands, result, grid, fill, output.resampling, r0, n),
-                          window=Window(0, r0, width, n))
-                monitor.report((r0 + n) / height, "writing raster")
-                continue
-            block = np.zeros((count, n, width), dtype=numpy_dtype(dtype))
-            if fill.nodata is not None:
-                block[:] = fill.nodata
-            reproject(rasterio.band(src, bands), block, src_nodata=fill.source,
-                      dst_transform=compose(transform, Affine.translation(0, r0)), dst_crs=warp_crs,
-                      dst_nodata=fill.nodata, dst_alpha=count if fill.alpha else 0, resampling=resampling,
-                      num_threads=THREADS, warp_mem_limit=WARP_MEMORY_MB, **options)
-            dst.write(block, window=Window(0, r0, width, n))
-            monitor.report((r0 + n) / height, "writing raster")
+            block = pending.result()
+            if i + 1 < len(starts):
+                pending = ahead.submit(strip, starts[i + 1])
+            dst.write(block, window=Window(0, r0, width, block.shape[1]))
+            monitor.report((r0 + block.shape[1]) / height, "writing raster")
         interp = list(src.colorinterp)
         if fill.alpha:
             from rasterio.enums import ColorInterp

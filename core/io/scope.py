@@ -1,0 +1,91 @@
+"""What one run keeps of its input files while it lasts: their descriptions, and one open dataset per
+file. A run reads each input several times (its description samples the pixels for a collar, then the
+working image, the previews); GDAL keeps the blocks a dataset decoded, so on one dataset a large file's
+second decimated read costs a tenth of its first. Outside :func:`run_scope` nothing is kept.
+"""
+from __future__ import annotations
+
+import contextlib
+import os
+import threading
+from contextvars import ContextVar
+from typing import Optional
+
+import rasterio
+
+
+class RunFiles:
+    """Descriptions by file (see :func:`file_key`) and open datasets by path, each with its lock (a GDAL
+    dataset is read by one thread at a time)."""
+
+    def __init__(self):
+        self.described = {}
+        self._open = {}
+        self._lock = threading.Lock()
+
+    def dataset(self, path: str):
+        with self._lock:
+            if path not in self._open:
+                self._open[path] = (rasterio.open(path), threading.Lock())
+            return self._open[path]
+
+    def close(self) -> None:
+        for ds, _ in self._open.values():
+            ds.close()
+        self._open.clear()
+
+
+_CURRENT: ContextVar[Optional[RunFiles]] = ContextVar("hamta_run_files", default=None)
+
+
+@contextlib.contextmanager
+def run_scope():
+    """Within this block (one job, and threads started with its context), input files are described once
+    and read through one dataset each; inside another such block, that block's files."""
+    if current() is not None:
+        yield current()
+        return
+    files = RunFiles()
+    token = _CURRENT.set(files)
+    try:
+        yield files
+    finally:
+        _CURRENT.reset(token)
+        files.close()
+
+
+def current() -> Optional[RunFiles]:
+    return _CURRENT.get()
+
+
+def release_datasets() -> None:
+    """Close the run's datasets (and free the blocks GDAL keeps for them); a later read opens them again."""
+    files = current()
+    if files is not None:
+        files.close()
+
+
+def file_key(path: str):
+    """A local file's path and what changes with its content; None for other paths (a ``/vsi`` path, a
+    subdataset or a URL is described and opened afresh every time)."""
+    if not os.path.isfile(path):
+        return None
+    st = os.stat(path)
+    return path, os.path.abspath(path), st.st_ino, st.st_size, st.st_mtime_ns
+
+
+@contextlib.contextmanager
+def dataset_for(path: str, dataset=None):
+    """An open dataset of ``path``: ``dataset`` when given, the run's own (locked while used) inside
+    :func:`run_scope`, else one opened for this block."""
+    files = current()
+    if dataset is not None:
+        yield dataset
+    elif files is not None and file_key(path) is not None:
+        ds, lock = files.dataset(path)
+        with lock:
+            yield ds
+    else:
+        ds = rasterio.open(path)
+        with ds:
+            yield ds
