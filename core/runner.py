@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
+import time
 from typing import Dict, Optional, Tuple
 
 from .auto import AUTO
@@ -57,12 +58,14 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     else:
         get_method(method).make_params(params)  # a wrong name or parameter fails before any work
     service = parse_service(reference)
+    described_s = time.perf_counter()
     if paths is not None and paths.as_dict():
         inputs = threaded(lambda job: open_raster(*job), [(target, "target")] + ([] if service else
                                                                                  [(reference, "reference")]))
         check_destinations(paths, inputs)
         if paths.raster:
             check_output_options(output, inputs[0], paths.raster)
+    described_s = time.perf_counter() - described_s
     request = run_request(method, params, options, accept_unverified)
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
     stage = monitor.span(0.0, share)
@@ -74,6 +77,7 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     else:
         result = register(target, reference, method=method, params=params, options=options,
                           progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled, map_chunks=map_chunks)
+    result = _opened_before(result, described_s)
     if share == 1.0:
         return result, {}
     stage = monitor.span(share, 1.0)
@@ -89,6 +93,14 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     written = write_outputs(result, paths, output=output, progress=lambda f, m: stage.report(f, m),
                             is_canceled=is_canceled, request=request)
     return result, written
+
+
+def _opened_before(result: RegistrationResult, seconds: float) -> RegistrationResult:
+    """``result`` with the inputs' description, done before registering (to check the destinations),
+    counted in its 'open' stage."""
+    t = result.timings
+    timings = dataclasses.replace(t, open=round(t.open + seconds, 4), total=round(t.total + seconds, 4))
+    return dataclasses.replace(result, timings=timings)
 
 
 def run_request(method: str, params, options: RegisterOptions, accept_unverified: bool) -> dict:

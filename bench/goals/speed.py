@@ -1,7 +1,9 @@
 """Hamta against each peer on its own ground, whole process (issue 24): ``hamta bench --families speed``.
 
 Every run is a fresh process, as a user runs it (start-up, reading, registration, every output), timed
-wall-clock with its peak memory (:func:`hamta.bench.memory.measured`); each case runs ``REPEATS`` times,
+wall-clock with its peak memory (:func:`hamta.bench.memory.measured`), with Python's compiled modules
+kept as an installed package keeps them (``PYTHONDONTWRITEBYTECODE`` is dropped for Hamta and its peers
+alike: otherwise every run compiles Hamta's modules again); each case runs ``REPEATS`` times,
 Hamta and its peer one after the other, and medians are quoted. Run it with ``--jobs 1`` on a quiet
 machine: the ratios are what counts, not the seconds.
 
@@ -99,11 +101,16 @@ def _hamta(args, out: str, repeats: int):
     runs = []
     for _ in range(repeats):  # this interpreter's hamta (``python -m`` costs what the ``hamta`` script does)
         seconds, peak, code = measured([sys.executable, "-m", "hamta.cli.main", "register", *args, "--out", out,
-                                        "--quiet"])
+                                        "--quiet"], env=_installed_env())
         runs.append((seconds, peak, code))
     with open(os.path.join(out, "report.json")) as f:
         report = json.load(f)
     return statistics.median(r[0] for r in runs), statistics.median(r[1] for r in runs), runs[-1][2], report
+
+
+def _installed_env() -> dict:
+    """This environment without ``PYTHONDONTWRITEBYTECODE`` (see the module's docstring)."""
+    return {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 
 
 def _registration_s(report) -> float:
@@ -135,7 +142,7 @@ def _pair(kind: str, name: str, folder: str, data_dir: str) -> dict:
         matrix = os.path.join(folder, f"{family}-{pair}-opencv.txt")
         for _ in range(REPEATS):
             s, p, c = measured([sys.executable, "-c", OPENCV_SCRIPT, case.target, case.reference,
-                                os.path.join(folder, f"{family}-{pair}-opencv.png"), matrix])
+                                os.path.join(folder, f"{family}-{pair}-opencv.png"), matrix], env=_installed_env())
             times.append(s)
             peaks.append(p)
         m = np.vstack([np.loadtxt(matrix), [0, 0, 1]])
@@ -188,7 +195,7 @@ def _georeferenced(folder: str, data_dir: str) -> dict:
         times, peaks, shift = [], [], None
         for i in range(REPEATS):
             s, p, c = measured([python, "-c", AROSICS_SCRIPT, reference, target,
-                                os.path.join(folder, f"arosics-{i}.tif")])
+                                os.path.join(folder, f"arosics-{i}.tif")], env=_installed_env())
             times.append(s)
             peaks.append(p)
         shift = _arosics_shift(python, reference, target, folder)
