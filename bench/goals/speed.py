@@ -146,7 +146,7 @@ def _pair(kind: str, name: str, folder: str, data_dir: str) -> dict:
             times.append(s)
             peaks.append(p)
         m = np.vstack([np.loadtxt(matrix), [0, 0, 1]])
-        peer = _model({"type": "affine", "target_px_to_reference_px": m})
+        peer = _model({"model": {"type": "affine", "target_px_to_reference_px": m}})
         row.update(peer="OpenCV script", peer_s=statistics.median(times), peer_mb=statistics.median(peaks),
                    peer_error_px=float(np.sqrt(np.mean(case.errors(peer) ** 2))))
     return row

@@ -15,7 +15,7 @@ import rasterio
 
 
 class RunFiles:
-    """Descriptions by file (see :func:`file_key`) and open datasets by path, each with its lock (a GDAL
+    """Descriptions and open datasets by file (see :func:`file_key`), each dataset with its lock (a GDAL
     dataset is read by one thread at a time)."""
 
     def __init__(self):
@@ -24,10 +24,11 @@ class RunFiles:
         self._lock = threading.Lock()
 
     def dataset(self, path: str):
+        key = file_key(path)
         with self._lock:
-            if path not in self._open:
-                self._open[path] = (rasterio.open(path), threading.Lock())
-            return self._open[path]
+            if key not in self._open:
+                self._open[key] = (rasterio.open(path), threading.Lock())
+            return self._open[key]
 
     def close(self) -> None:
         for ds, _ in self._open.values():

@@ -97,3 +97,17 @@ def test_a_bug_in_a_method_is_a_crash_not_a_failure():
     report = {"summary": summary, "cases": rows, "meta": {"duration_s": 1.0, "notes": []}}
     header, _, sift, x = [re.split(r"\s{2,}", line.strip()) for line in text_tables(report).splitlines()[2:6]]
     assert (sift[header.index("crashes")], x[header.index("crashes")]) == ("1", "2")
+
+
+def test_the_speed_study_times_hamta_and_the_opencv_script_on_a_small_pair(tmp_path, shared, monkeypatch):
+    """One repeat of the speed family's small-optical case: both run in fresh processes, both models scored."""
+    from types import SimpleNamespace
+
+    from hamta.bench.goals import speed
+
+    monkeypatch.setattr(speed, "REPEATS", 1)
+    config = SimpleNamespace(out_dir=str(tmp_path), data_dir=str(shared / "data"))
+    row, = speed.run_unit(("small-optical", "mm-optical/1"), config)
+    assert row["exit"] == 0 and row["method"] == "sift" and row["error_px"] < 15
+    assert row["peer"] == "OpenCV script" and row["peer_s"] > 0 and row["peer_error_px"] < 15
+    assert row["hamta_s"] > row["registration_s"] > 0

@@ -43,6 +43,18 @@ def test_tps_without_smoothing_interpolates_its_control_points(points):
     assert np.abs(tps.apply(src) - dst).max() < 1e-6
 
 
+def test_tps_evaluates_its_formula_in_chunks(points):
+    """f(p) = affine + sum_i w_i U(|q - q_i|^2), U(r2) = r2 log r2, however the points are chunked."""
+    src, rng = points
+    tps = ThinPlateSplineModel.fit(src, apply_matrix(H, src) + rng.normal(0, 0.5, src.shape), smoothing=0)
+    p = rng.random((500, 2)) * 1000
+    q, c = (p - tps.center) / tps.scale, (tps.control - tps.center) / tps.scale
+    r2 = ((q[:, None, :] - c[None, :, :]) ** 2).sum(axis=2)
+    u = np.where(r2 > 0, r2 * np.log(np.where(r2 > 0, r2, 1.0)), 0.0)
+    expected = np.column_stack([np.ones(len(q)), q]) @ tps.affine + u @ tps.weights
+    assert np.allclose(tps.apply(p, max_cells=len(c) * 7), expected, rtol=0, atol=1e-9)
+
+
 def test_tps_auto_smoothing_keeps_match_noise_out_of_the_surface(points):
     src, rng = points
     dst = apply_matrix(H, src)

@@ -177,6 +177,26 @@ def test_spline_warp_matches_gdal_on_values_nodata_and_alpha(tmp_path, results, 
     assert np.median(diff) <= 2 and np.percentile(diff, 99) < 40  # values span 1100..3800
 
 
+@pytest.mark.parametrize("model", ["affine", "tps"])
+def test_the_warped_raster_is_the_same_in_strips_and_tiles_on_any_number_of_threads(tmp_path, results, monkeypatch,
+                                                                                      model):
+    """Strips (256 rows) warped ahead of the one being written, the spline's tiles (64 px) on threads: the
+    same raster on one thread as on three."""
+    from hamta.core import parallel
+    from hamta.core.outputs import spline_warp, warp
+
+    monkeypatch.setattr(warp, "STRIP_BYTES", 1)
+    monkeypatch.setattr(spline_warp, "TILE_PX", 64)
+    rasters = []
+    for threads in (1, 3):
+        monkeypatch.setattr(parallel, "THREADS", threads)
+        path = tmp_path / f"{threads}.tif"
+        write_outputs(results[model], OutputPaths(raster=str(path)))
+        with rasterio.open(path) as ds:
+            rasters.append(ds.read())
+    assert rasters[0].shape[1] > 256 and np.array_equal(rasters[0], rasters[1])
+
+
 def test_a_model_that_blows_the_grid_up_writes_no_raster(tmp_path, results):
     """A projective model whose horizon nearly reaches the target's edge maps it onto a grid far
     larger than its scale at the centre allows: refused, nothing written."""

@@ -72,6 +72,21 @@ def test_a_model_that_misses_the_reference_has_nothing_to_check(demo):
     assert v.verdict == "failed" and v.n_sites == 0
 
 
+@pytest.mark.parametrize("side, canvas", [(40, 64), (57, 81), (90, 120)])
+def test_turned_template_spectra_are_those_of_the_turned_templates(side, canvas):
+    """The half turn and the two mirrors (orientation channels following) of a CFOG template, derived from
+    its spectrum, equal the spectra computed from the turned templates themselves."""
+    from hamta.core.verify.correlation import TemplateSpectrum, fast_length, turned
+
+    template = np.random.default_rng(side).random((9, side, side))
+    spectrum = TemplateSpectrum(template, (canvas, canvas))
+    for derived, stack in zip(spectrum.turned(), turned(template)):
+        direct = TemplateSpectrum(stack, (canvas, canvas))
+        assert np.allclose(derived.spectrum, direct.spectrum, rtol=0, atol=1e-9 * np.abs(direct.spectrum).max())
+        assert derived.norm == pytest.approx(direct.norm) and derived.size == direct.size
+    assert [fast_length(n) for n in (64, 65, 97, 114, 121)] == [64, 72, 100, 120, 125]
+
+
 def test_judge_separates_agreement_from_chance():
     rng = np.random.default_rng(3)
     n, k = 20, 8
