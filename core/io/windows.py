@@ -1,9 +1,9 @@
 """Many small full-resolution windows of one raster, as :func:`hamta.core.io.raster.read_image` reads
-them: what the refinement and the check read at hundreds of sites. A small raster is read whole once
-and its windows cut from memory (a JPEG, or any file without tiles, is decoded from its start for every
-window GDAL reads). A larger one is read window by window: within a run (:func:`hamta.core.io.scope.run_scope`)
-through the run's dataset, whose blocks GDAL decoded when the run described the file, else through one
-open dataset per thread.
+them: what the refinement and the check read at hundreds of sites. A small raster without tiles is read
+whole once and its windows cut from memory (a JPEG, or a file in strips, is decoded from its start or a
+strip's for every window GDAL reads). Others are read window by window: within a run
+(:func:`hamta.core.io.scope.run_scope`) through the run's dataset, whose blocks GDAL decoded when the run
+described the file, else through one open dataset per thread.
 Coordinates: windows in whole full-resolution pixels of the raster (corner convention).
 """
 from __future__ import annotations
@@ -15,9 +15,9 @@ import numpy as np
 from rasterio.windows import Window
 
 from .raster import RasterInfo, numpy_dtype, open_dataset, read_image
-from .scope import current, file_key
+from .scope import current, dataset_for, file_key
 
-HOLD_PIXELS = 4_000_000  # largest raster held whole: 20 MB of grey image and mask, read once
+HOLD_PIXELS = 4_000_000  # largest raster without tiles held whole: 20 MB of grey image and mask, read once
 SHARED_BYTES = 512 * 2 ** 20  # largest raster read through the run's dataset (what GDAL's block cache may keep)
 
 
@@ -36,7 +36,7 @@ class WindowReader:
         self._lock = threading.Lock()
 
     def __enter__(self) -> "WindowReader":
-        if self._hold:  # the collar is masked per window below, as read_image masks it
+        if self._hold and not _tiled(self.info):  # the collar is masked per window below, as read_image masks it
             self._held = read_image(dataclasses.replace(self.info, collar_fill=None), self.bands)
         return self
 
@@ -75,3 +75,9 @@ class WindowReader:
             with self._lock:
                 self._opened.append(ds)
         return ds
+
+
+def _tiled(info: RasterInfo) -> bool:
+    """Whether the file's blocks are tiles narrower than the raster (a window then decodes its tiles only)."""
+    with dataset_for(info.path) as ds:
+        return ds.block_shapes[0][1] < info.width
