@@ -162,11 +162,11 @@ def correlate(pairs, reflected, side: int, params: VerifyParams, monitor: Monito
         return (spectrum,) + spectrum.turned(), SearchSpectrum(search, side, shape)
 
     usable = [i for i in range(n) if pairs[i] is not None]
-    extra = list({id(p): p for i in usable for p in [reflected[i]] if p is not None and
-                  all(p is not pairs[j] for j in usable)}.values())
-    prepared = threaded(prepare, [pairs[i] for i in usable] + extra, monitor.span(0.0, 0.5), "verifying")
+    areas = {id(pairs[i]): pairs[i] for i in usable}  # the sites' own, then reflections read for the turn only
+    areas.update({id(p): p for p in (reflected[i] for i in usable) if p is not None and id(p) not in areas})
+    prepared = threaded(prepare, list(areas.values()), monitor.span(0.0, 0.5), "verifying")
     templates = dict(zip(usable, (t for t, _ in prepared)))
-    spectra = {id(p): a for p, (_, a) in zip([pairs[i] for i in usable] + extra, prepared)}
+    spectra = {key: a for key, (_, a) in zip(areas, prepared)}
     m = len(usable)
 
     def compare(rank: int):
