@@ -6,6 +6,7 @@ import gc
 import os
 import resource
 import threading
+from typing import Optional
 
 
 class PeakRss:
@@ -71,15 +72,19 @@ SPAWN = ("import os, sys; pid = os.posix_spawnp(sys.argv[1], sys.argv[1:], os.en
          "_, status, usage = os.wait4(pid, 0); print(usage.ru_maxrss / 1024.0, os.waitstatus_to_exitcode(status))")
 
 
-def measured(cmd, env=None) -> tuple:
+def measured(cmd, env=None, printed: Optional[list] = None) -> tuple:
     """(seconds, peak MB, exit code) of a program run in a fresh process (with ``env``, else this one's
-    environment). It is started from a small Python process: Linux carries a process's peak RSS across
-    exec, so a child forked from the (large) bench process would report the bench's memory as its own."""
+    environment); the lines it printed are added to ``printed`` when given. It is started from a small
+    Python process: Linux carries a process's peak RSS across exec, so a child forked from the (large)
+    bench process would report the bench's memory as its own."""
     import subprocess
     import sys
     import time
 
     t0 = time.perf_counter()
     out = subprocess.run([sys.executable, "-c", SPAWN, *cmd], capture_output=True, text=True, check=True, env=env)
-    peak, code = out.stdout.split()[-2:]  # after what the program printed itself
+    *lines, last = out.stdout.splitlines()  # what the program printed itself, then SPAWN's line
+    peak, code = last.split()
+    if printed is not None:
+        printed.extend(lines)
     return time.perf_counter() - t0, float(peak), int(code)

@@ -33,17 +33,13 @@ def _pairs(values: List[str]) -> dict:
 
 
 def cmd_register(args) -> int:
-    import contextlib
-
     from ..core import UnverifiedResult, run
     from ..core.batch.runner import scheduler_map
     from ..core.outputs import OutputPaths
 
     options, output = settings_from(args)
-    only = None if args.outputs is None else OutputPaths.parse(args.outputs.split(","))
-    paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format,
-                                  only=None if only is None else only + (("vrt",) if args.vrt else ()),
-                                  overwrite=args.overwrite)
+    paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format, overwrite=args.overwrite,
+                                  only=None if args.outputs is None else args.outputs.split(","))
     cluster = contextlib.nullcontext() if not args.scheduler else scheduler_map(args.scheduler)
     try:
         with cluster as map_chunks:

@@ -70,7 +70,7 @@ class RefineParams:
             raise ValueError(f"refinement similarity must be 'ncc' or 'cfog', got {self.similarity!r}")
 
 
-POINTS_PER_THREAD = 32  # points refined in one piece of work (two datasets opened per piece)
+POINTS_PER_THREAD = 32  # points refined in one piece of work
 
 # For images of different modality: CFOG templates on a grid, found in the target at full resolution.
 STRUCTURAL_REFINEMENT = RefineParams(template_px=64, search_px=4, min_ncc=0.1, points="grid", similarity="cfog")

@@ -26,7 +26,7 @@ from .outputs.warp import check_output_options
 from .parallel import threaded
 from .pipeline import register
 from .progress import Monitor
-from .result import RegistrationResult
+from .result import RegistrationResult, params_dict
 
 REGISTER_SHARE = 0.8
 
@@ -107,8 +107,7 @@ def run_request(method: str, params, options: RegisterOptions, accept_unverified
     """What a run is asked, as ``report.json`` keeps it (JSON types): a batch resumes a pair only for the same."""
     import json
 
-    values = params if params is None or isinstance(params, dict) else dataclasses.asdict(params)
-    return json.loads(json.dumps({"method": method, "params": dict(values or {}),
+    return json.loads(json.dumps({"method": method, "params": params_dict(params),
                                   "options": dataclasses.asdict(options), "accept_unverified": accept_unverified}))
 
 

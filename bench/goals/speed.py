@@ -192,13 +192,13 @@ def _georeferenced(folder: str, data_dir: str) -> dict:
            "error_px": float(np.sqrt(np.mean(np.sum(err ** 2, axis=1)))), "stages": report["timings_s"]}
     python = os.environ.get("HAMTA_AROSICS_PYTHON")
     if python:
-        times, peaks, shift = [], [], None
+        times, peaks, printed = [], [], []
         for i in range(REPEATS):
             s, p, c = measured([python, "-c", AROSICS_SCRIPT, reference, target,
-                                os.path.join(folder, f"arosics-{i}.tif")], env=_installed_env())
+                                os.path.join(folder, f"arosics-{i}.tif")], env=_installed_env(), printed=printed)
             times.append(s)
             peaks.append(p)
-        shift = _arosics_shift(python, reference, target, folder)
+        shift = _arosics_shift(printed)
         # AROSICS moves the target by (x_px, y_px) of its pixels; the georeferencing was off by SHIFT_PX.
         error = None if shift is None else float(np.hypot(shift[0] + SHIFT_PX[0], shift[1] + SHIFT_PX[1]))
         row.update(peer="AROSICS", peer_s=statistics.median(times), peer_mb=statistics.median(peaks),
@@ -206,12 +206,9 @@ def _georeferenced(folder: str, data_dir: str) -> dict:
     return row
 
 
-def _arosics_shift(python: str, reference: str, target: str, folder: str):
-    import subprocess
-
-    out = subprocess.run([python, "-c", AROSICS_SCRIPT, reference, target, os.path.join(folder, "arosics-x.tif")],
-                         capture_output=True, text=True)
-    for line in out.stdout.splitlines()[::-1]:
+def _arosics_shift(printed):
+    """AROSICS's (x, y) shift in target px from what the script printed (its last JSON line), or None."""
+    for line in printed[::-1]:
         if line.startswith("{"):
             s = json.loads(line)
             return s["x_px"], s["y_px"]

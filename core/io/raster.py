@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import math
 import os
+import threading
 import warnings
 from dataclasses import dataclass, field
 from typing import Optional, Tuple
@@ -238,9 +239,8 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
     inside = (window.col_off >= 0 and window.row_off >= 0 and window.col_off + window.width <= info.width
               and window.row_off + window.height <= info.height)
     full_shape = (len(bands),) + tuple(shape)
-    with warnings.catch_warnings(), _read_errors_named(info), dataset_for(info.path, dataset) as ds:
-        warnings.simplefilter("ignore", NotGeoreferencedWarning)  # also for callers that raise on warnings
-        warnings.simplefilter("ignore", NodataShadowWarning)  # nodata and an alpha band: GDAL uses the nodata
+    shadow = info.nodata is not None and ColorInterp.alpha.name in info.colorinterp  # GDAL uses the nodata
+    with _quiet(not info.georeferenced or shadow), _read_errors_named(info), dataset_for(info.path, dataset) as ds:
         if info.is_complex and decimating:
             data = _read_amplitude_by_strips(ds, bands, window, shape, not inside)
         else:
@@ -257,6 +257,23 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
     image = np.tensordot(LUMINANCE, data, axes=1) if len(bands) == 3 else data[0]
     image = np.where(valid, image, 0).astype(np.float32, copy=False)
     return image, valid
+
+
+_QUIET = threading.Lock()
+
+
+@contextlib.contextmanager
+def _quiet(needed: bool):
+    """Rasterio's two warnings ignored in this block, also for callers that raise on warnings, when
+    ``needed`` (a plain image, nodata beside an alpha band: the reads that warn), one block at a time:
+    ``warnings.catch_warnings`` swaps the process's filters, which threads must not interleave."""
+    if not needed:
+        yield
+        return
+    with _QUIET, warnings.catch_warnings():
+        warnings.simplefilter("ignore", NotGeoreferencedWarning)
+        warnings.simplefilter("ignore", NodataShadowWarning)
+        yield
 
 
 @contextlib.contextmanager

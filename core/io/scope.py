@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import threading
 from contextvars import ContextVar
 from typing import Optional
@@ -31,9 +32,10 @@ class RunFiles:
             return self._open[key]
 
     def close(self) -> None:
-        for ds, _ in self._open.values():
-            ds.close()
-        self._open.clear()
+        with self._lock:
+            for ds, _ in self._open.values():
+                ds.close()
+            self._open.clear()
 
 
 _CURRENT: ContextVar[Optional[RunFiles]] = ContextVar("hamta_run_files", default=None)
@@ -69,9 +71,12 @@ def release_datasets() -> None:
 def file_key(path: str):
     """A local file's path and what changes with its content; None for other paths (a ``/vsi`` path, a
     subdataset or a URL is described and opened afresh every time)."""
-    if not os.path.isfile(path):
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
         return None
-    st = os.stat(path)
+    if not stat.S_ISREG(st.st_mode):
+        return None
     return path, os.path.abspath(path), st.st_ino, st.st_size, st.st_mtime_ns
 
 

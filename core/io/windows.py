@@ -8,6 +8,7 @@ Coordinates: windows in whole full-resolution pixels of the raster (corner conve
 """
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import threading
 
@@ -30,14 +31,18 @@ class WindowReader:
         self._hold = info.width * info.height <= hold_pixels
         self._held = None
         size = info.width * info.height * info.count * numpy_dtype(info.dtype).itemsize
-        self._files = current() if size <= SHARED_BYTES and file_key(info.path) is not None else None
+        files = current() if size <= SHARED_BYTES and file_key(info.path) is not None else None
+        self._shared = None if files is None else files.dataset(info.path)  # (dataset, its lock)
         self._local = threading.local()
         self._opened = []
         self._lock = threading.Lock()
 
     def __enter__(self) -> "WindowReader":
-        if self._hold and not _tiled(self.info):  # the collar is masked per window below, as read_image masks it
-            self._held = read_image(dataclasses.replace(self.info, collar_fill=None), self.bands)
+        if self._hold:
+            with self._run_dataset() if self._shared else dataset_for(self.info.path) as ds:
+                if ds.block_shapes[0][1] >= self.info.width:  # no tiles: a window decodes from a row's start
+                    plain = dataclasses.replace(self.info, collar_fill=None)  # the collar is masked per window
+                    self._held = read_image(plain, self.bands, dataset=ds)
         return self
 
     def __exit__(self, *exc):
@@ -49,9 +54,8 @@ class WindowReader:
 
     def read(self, window: Window):
         """(image, valid) of ``window``, parts outside the raster invalid and 0."""
-        if self._held is None and self._files is not None:
-            ds, lock = self._files.dataset(self.info.path)
-            with lock:
+        if self._held is None and self._shared is not None:
+            with self._run_dataset() as ds:
                 return read_image(self.info, self.bands, window, dataset=ds)
         if self._held is None:
             return read_image(self.info, self.bands, window, dataset=self._dataset())
@@ -68,6 +72,12 @@ class WindowReader:
             out[~ok] = 0
         return out, ok
 
+    @contextlib.contextmanager
+    def _run_dataset(self):
+        ds, lock = self._shared
+        with lock:
+            yield ds
+
     def _dataset(self):
         ds = getattr(self._local, "ds", None)
         if ds is None:  # a GDAL dataset is not shared by threads
@@ -76,8 +86,3 @@ class WindowReader:
                 self._opened.append(ds)
         return ds
 
-
-def _tiled(info: RasterInfo) -> bool:
-    """Whether the file's blocks are tiles narrower than the raster (a window then decodes its tiles only)."""
-    with dataset_for(info.path) as ds:
-        return ds.block_shapes[0][1] < info.width

@@ -170,17 +170,16 @@ def _prior_usable(target: RasterInfo, reference: RasterInfo, choice: str):
 
 def _relatable(a: Optional[CRS], b: Optional[CRS]) -> bool:
     """Whether PROJ can transform coordinates between two CRSs (a local engineering CRS cannot)."""
-    from pyproj.exceptions import CRSError, ProjError
-
     if a is None or b is None or a == b:
         return True
-    try:
-        from pyproj import Transformer
+    from pyproj import Transformer
+    from pyproj.exceptions import CRSError, ProjError
 
-        x, y = Transformer.from_crs(a, b, always_xy=True).transform(0.0, 0.0, errcheck=False)
-        return True
+    try:
+        Transformer.from_crs(a, b, always_xy=True)
     except (ProjError, CRSError):
         return False
+    return True
 
 
 def _read_whole(info: RasterInfo, bands, max_pixels: int, role: str, window: Optional[Window] = None) -> WorkingImage:

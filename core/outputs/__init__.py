@@ -51,10 +51,12 @@ class OutputPaths:
     def in_folder(cls, folder: str, vrt: bool = False, raster_format: str = "gtiff",
                   only: Optional[Iterable[str]] = None, overwrite: bool = False) -> "OutputPaths":
         """The CLI layout: registered.tif (registered.vrt in the VRT format), gcps.points, gcps.gpkg,
-        report.json, report.html (+ gcps.vrt), or only the outputs named in ``only`` (names of
-        :attr:`LAYOUT`; what is not asked for is not computed). Publishing there replaces the folder's
+        report.json, report.html, or only the outputs named in ``only`` (names of :attr:`LAYOUT`; what
+        is not asked for is not computed); gcps.vrt too with ``vrt``. Publishing there replaces the folder's
         previous set whole (a rerun without ``vrt`` removes gcps.vrt)."""
-        wanted = set(cls.LAYOUT) - ({"vrt"} if not vrt else set()) if only is None else set(cls.parse(only))
+        wanted = set(cls.LAYOUT) - {"vrt"} if only is None else set(cls.parse(only))
+        if vrt:
+            wanted.add("vrt")
         names = {k: os.path.join(folder, v) for k, v in cls.LAYOUT.items() if k in wanted}
         if raster_format == "vrt":
             names["raster"] = os.path.join(folder, "registered.vrt")

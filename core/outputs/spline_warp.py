@@ -57,18 +57,18 @@ def spline_rows(src, bands, result, grid, fill, resampling: str, r0: int, n: int
              for t0 in range(0, n, TILE_PX) for c0 in range(0, width, TILE_PX)]
     reading = threading.Lock()  # ``src`` is read by one thread at a time
 
-    def one(tile):
+    def one(tile):  # each tile writes its own part of ``out``
         t0, c0, h, w = tile
         xs, ys = target_positions(result, transform, crs, c0, r0 + t0, w, h, step)
-        return _resample(src, bands, xs, ys, fill, resampling, reading)
-
-    for (t0, c0, h, w), (tile, valid) in zip(tiles, threaded(one, tiles)):
-        if tile is not None:
+        resampled, valid = _resample(src, bands, xs, ys, fill, resampling, reading)
+        if resampled is not None:
             view = out[:, t0:t0 + h, c0:c0 + w]
             for b in range(len(bands)):
-                view[b][valid] = tile[b][valid]
+                view[b][valid] = resampled[b][valid]
             if fill.alpha:
                 view[-1][valid] = alpha
+
+    threaded(one, tiles)
     return out
 
 

@@ -39,6 +39,7 @@ from ..errors import OutputError
 from ..estimation.models import local_jacobian
 from ..io.raster import numpy_dtype
 from ..options import FORMAT, GRID, RESAMPLING, OutputOptions
+from ..parallel import THREADS
 from ..progress import Monitor
 from .model_vrt import scratch_dir, write_model_vrt
 from .spline_warp import spline_applies, spline_rows
@@ -47,7 +48,6 @@ from .tags import verdict_tags
 PLACEHOLDER_CRS = CRS.from_epsg(3857)  # lets GDAL warp between two grids of a raster without CRS
 STRIP_BYTES = 32 * 2 ** 20  # a strip of output rows (all bands); two are in memory at a time
 WARP_MEMORY_MB = 256
-THREADS = max(1, min(os.cpu_count() or 1, 4))
 # NUM_THREADS: DEFLATE compresses blocks on every core (a third of the writing time on two).
 GTIFF_OPTIONS = {"TILED": "YES", "BLOCKXSIZE": "256", "BLOCKYSIZE": "256", "COMPRESS": "DEFLATE",
                  "BIGTIFF": "IF_SAFER", "INTERLEAVE": "BAND", "NUM_THREADS": str(THREADS)}

@@ -57,6 +57,7 @@ from .sites import (
     read_site,
     reference_overlap,
     reflections,
+    search_descriptors,
     site_grid,
     structured,
     template_side,
@@ -157,16 +158,21 @@ def correlate(pairs, reflected, side: int, params: VerifyParams, monitor: Monito
     shape = (fast_length(side + 2 * s),) * 2
 
     def prepare(pair):
+        if id(pair) not in own:  # a reflection read for the turn only: its search area is all it needs
+            return None, SearchSpectrum(search_descriptors(pair), side, shape)
         template, search = descriptors(pair)
         spectrum = TemplateSpectrum(template, shape)
         return (spectrum,) + spectrum.turned(), SearchSpectrum(search, side, shape)
 
     usable = [i for i in range(n) if pairs[i] is not None]
-    areas = {id(pairs[i]): pairs[i] for i in usable}  # the sites' own, then reflections read for the turn only
-    areas.update({id(p): p for p in (reflected[i] for i in usable) if p is not None and id(p) not in areas})
-    prepared = threaded(prepare, list(areas.values()), monitor.span(0.0, 0.5), "verifying")
-    templates = dict(zip(usable, (t for t, _ in prepared)))
-    spectra = {key: a for key, (_, a) in zip(areas, prepared)}
+    areas = {id(pairs[i]): pairs[i] for i in usable}  # the sites' own
+    own = set(areas)
+    for p in (reflected[i] for i in usable):
+        if p is not None:
+            areas.setdefault(id(p), p)
+    by_area = dict(zip(areas, threaded(prepare, list(areas.values()), monitor.span(0.0, 0.5), "verifying")))
+    templates = {i: by_area[id(pairs[i])][0] for i in usable}
+    spectra = {key: search for key, (_, search) in by_area.items()}
     m = len(usable)
 
     def compare(rank: int):

@@ -11,6 +11,7 @@ from __future__ import annotations
 import copy
 from functools import lru_cache
 
+import cv2
 import numpy as np
 
 
@@ -75,15 +76,8 @@ def _ramps(n: int, half: int, side: int):
 
 
 def fast_length(n: int) -> int:
-    """The smallest length >= ``n`` with no prime factor above 5 (where FFTs are fastest)."""
-    while True:
-        m = n
-        for p in (2, 3, 5):
-            while m % p == 0:
-                m //= p
-        if m == 1:
-            return n
-        n += 1
+    """The smallest length >= ``n`` with no prime factor above 5, where FFTs are fastest."""
+    return cv2.getOptimalDFTSize(n)
 
 
 def window_sums(a: np.ndarray, side: int) -> np.ndarray:

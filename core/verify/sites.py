@@ -191,8 +191,14 @@ def nearest_valid(valid: np.ndarray, rows_cols: np.ndarray) -> np.ndarray:
 
 def descriptors(pair) -> Tuple[np.ndarray, np.ndarray]:
     """The CFOG stacks of a site's template and search area (see :func:`read_site`), computed portably."""
-    tmpl, ok, warped, wok = pair
-    return cfog(tmpl, valid=ok, portable=True), cfog(warped, valid=wok, portable=True)
+    tmpl, ok, _, _ = pair
+    return cfog(tmpl, valid=ok, portable=True), search_descriptors(pair)
+
+
+def search_descriptors(pair) -> np.ndarray:
+    """The CFOG stack of a site's search area alone."""
+    _, _, warped, wok = pair
+    return cfog(warped, valid=wok, portable=True)
 
 
 def structure(image: np.ndarray, valid: np.ndarray) -> float:
