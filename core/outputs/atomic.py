@@ -212,27 +212,32 @@ def _roll_forward(folder: str, journal: dict) -> None:
     backup = os.path.join(staging, REPLACED)
     os.makedirs(backup, exist_ok=True)
     for name in journal["files"]:
-        new, final = os.path.join(staging, name), os.path.join(folder, name)
-        if os.path.lexists(new):  # not yet moved: the folder's file, if any, is the old one
-            if os.path.lexists(final):
-                os.replace(final, os.path.join(backup, name))
-            os.replace(new, final)
+        _move_in(staging, backup, folder, name)
     for name in journal["stale"]:
         if os.path.lexists(os.path.join(folder, name)):
             os.replace(os.path.join(folder, name), os.path.join(backup, name))
-    if os.path.lexists(os.path.join(staging, MANIFEST)):
-        os.replace(os.path.join(staging, MANIFEST), os.path.join(folder, MANIFEST))
+    _move_in(staging, backup, folder, MANIFEST)  # the old manifest kept too, for a roll back
     os.remove(os.path.join(folder, JOURNAL))
     shutil.rmtree(staging, ignore_errors=True)
 
 
+def _move_in(staging: str, backup: str, folder: str, name: str) -> None:
+    new, final = os.path.join(staging, name), os.path.join(folder, name)
+    if os.path.lexists(new):  # not yet moved: the folder's file, if any, is the old one
+        if os.path.lexists(final):
+            os.replace(final, os.path.join(backup, name))
+        os.replace(new, final)
+
+
 def _roll_back(folder: str, journal: dict) -> None:
-    """Undo a publication that failed while its run was alive (a disk error): the old set returns."""
+    """Undo a publication that failed while its run was alive (a disk error): the old set returns, with
+    its manifest."""
     staging = os.path.join(folder, journal["staging"])
     backup = os.path.join(staging, REPLACED)
-    for name in journal["files"] + journal["stale"]:
+    moved = journal["files"] + [MANIFEST]
+    for name in moved + journal["stale"]:
         new, final, old = (os.path.join(staging, name), os.path.join(folder, name), os.path.join(backup, name))
-        if name in journal["files"] and not os.path.lexists(new) and os.path.lexists(final):
+        if name in moved and not os.path.lexists(new) and os.path.lexists(final):
             os.replace(final, new)
         if os.path.lexists(old):
             os.replace(old, final)

@@ -104,6 +104,35 @@ def test_sigkill_at_every_step_of_publishing_leaves_the_old_set_or_the_new_one(t
     assert steps and steps >= 6 and k == steps + 1, (steps, k)
 
 
+def test_a_publication_that_fails_at_its_last_step_leaves_the_old_set_and_its_manifest(tmp_path, results,
+                                                                                    monkeypatch):
+    """A disk error while the journal is removed, the last step of publishing: the run rolls back to exactly
+    the old files and the old manifest (which a batch resume reads)."""
+    import hamta.core.outputs.atomic as atomic
+    from hamta.core.errors import OutputError
+
+    (old, old_options, _), (new, new_options, _) = results
+    folder = tmp_path / "out"
+    write_outputs(old, OutputPaths.in_folder(str(folder)), request=run_request("sift", None, old_options, False))
+    before = _state(folder)
+    failed = []
+
+    class Os:
+        def __getattr__(self, name):
+            return getattr(os, name)
+
+        def remove(self, path):
+            if path.endswith(JOURNAL) and not failed:
+                failed.append(path)
+                raise OSError(28, "No space left on device")
+            os.remove(path)
+
+    monkeypatch.setattr(atomic, "os", Os())
+    with pytest.raises(OutputError, match="left as it was"):
+        write_outputs(new, OutputPaths.in_folder(str(folder)), request=run_request("sift", None, new_options, False))
+    assert failed and _state(folder) == before
+
+
 def _register(demo_pair, out, *extra):
     return ["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
             "--method", "sift", "--quiet", *extra]
