@@ -328,15 +328,15 @@ def test_map_points_names_the_report_and_the_problem(case, tmp_path, capsys):
 
 
 def test_map_points_with_a_huge_spline_stays_within_memory(monkeypatch):
-    from hamta.core.estimation import models
+    from hamta.core.estimation import tps as spline
 
     n = 200_000
     rng = np.random.default_rng(0)
-    tps = models.ThinPlateSplineModel(rng.uniform(0, 1e4, (n, 2)), np.zeros(2), 1e4, rng.normal(0, 1e-6, (n, 2)),
+    tps = spline.ThinPlateSplineModel(rng.uniform(0, 1e4, (n, 2)), np.zeros(2), 1e4, rng.normal(0, 1e-6, (n, 2)),
                                       np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]))
     widest = []
-    real = models._tps_kernel
-    monkeypatch.setattr(models, "_tps_kernel", lambda r2: widest.append(r2.size) or real(r2))
+    real = spline._tps_kernel
+    monkeypatch.setattr(spline, "_tps_kernel", lambda r2: widest.append(r2.size) or real(r2))
     out = tps.apply(rng.uniform(0, 1e4, (50, 2)))
     assert out.shape == (50, 2) and np.isfinite(out).all() and max(widest) <= 4_000_000
 
