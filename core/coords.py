@@ -62,6 +62,14 @@ def apply_matrix(h: np.ndarray, xy) -> np.ndarray:
     return out
 
 
+def xy_bounds(xy) -> tuple:
+    """(lowest x and y, highest x and y) of ``(N, 2)`` points (any one space), column by column: the
+    same values as ``min(axis=0)``, which numpy reduces some 20 times slower across two columns."""
+    xy = as_xy(xy)
+    x, y = xy[:, 0], xy[:, 1]
+    return np.array([x.min(), y.min()]), np.array([x.max(), y.max()])
+
+
 def affine_to_matrix(transform: Affine) -> np.ndarray:
     """A rasterio/GDAL geotransform as a 3x3 matrix (pixel corner coordinates -> map)."""
     t = transform

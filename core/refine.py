@@ -17,7 +17,7 @@ import cv2
 import numpy as np
 from rasterio.windows import Window
 
-from .coords import as_xy
+from .coords import as_xy, xy_bounds
 from .descriptors.cfog import cfog, ncc_surface, peak_offset
 from .errors import InsufficientMatchesError
 from .estimation.models import LinearModel
@@ -188,8 +188,9 @@ def _refine_one(p, inverse, targets: WindowReader, references: WindowReader, t, 
     size = t + 2 * s
     gx, gy = np.meshgrid(np.arange(size) + x0 - s + 0.5, np.arange(size) + y0 - s + 0.5)
     src = inverse.apply(np.column_stack([gx.ravel(), gy.ravel()]))
-    c0, r0 = np.floor(src.min(axis=0)).astype(int) - 2
-    c1, r1 = np.ceil(src.max(axis=0)).astype(int) + 2
+    lo, hi = xy_bounds(src)
+    c0, r0 = np.floor(lo).astype(int) - 2
+    c1, r1 = np.ceil(hi).astype(int) + 2
     if c0 < 0 or r0 < 0 or c1 > target.width or r1 > target.height:
         return None
     patch, patch_ok = targets.read(Window(c0, r0, c1 - c0, r1 - r0))

@@ -17,7 +17,7 @@ from rasterio.windows import Window
 from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
-from ..coords import raster_outline
+from ..coords import raster_outline, xy_bounds
 from ..descriptors.cfog import central_differences, cfog, gaussian_blur
 from ..estimation.models import local_jacobian
 from ..io.raster import RasterInfo
@@ -145,8 +145,9 @@ def read_site(model, p, targets: WindowReader, references: WindowReader, side: i
     size = t + 2 * s
     gx, gy = np.meshgrid(np.arange(size) + x0 - s + 0.5, np.arange(size) + y0 - s + 0.5)
     src = q + (np.column_stack([gx.ravel(), gy.ravel()]) - p) @ jinv.T
-    c0, r0 = np.floor(src.min(axis=0)).astype(int) - 2
-    c1, r1 = np.ceil(src.max(axis=0)).astype(int) + 2
+    lo, hi = xy_bounds(src)
+    c0, r0 = np.floor(lo).astype(int) - 2
+    c1, r1 = np.ceil(hi).astype(int) + 2
     if c1 <= 0 or r1 <= 0 or c0 >= target.width or r0 >= target.height or (c1 - c0) * (r1 - r0) > 16 * size * size:
         return None
     # The window may reach past the target (a turned square's bounding box); what is sampled must not.

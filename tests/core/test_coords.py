@@ -8,6 +8,7 @@ from hamta.core.coords import (
     matrix_corner_to_opencv,
     opencv_to_corner,
     pixel_to_map,
+    xy_bounds,
 )
 
 
@@ -29,3 +30,11 @@ def test_pixel_map_round_trip_uses_corner_origin():
     assert np.allclose(pixel_to_map(t, [[0.5, 0.5]]), [[500005, 3999995]])
     xy = np.array([[12.3, 45.6]])
     assert np.allclose(map_to_pixel(t, pixel_to_map(t, xy)), xy)
+
+
+def test_xy_bounds_are_the_lowest_and_highest_of_each_column():
+    xy = np.random.default_rng(3).normal(0, 500, (1001, 2))
+    xy[17] = [np.nextafter(xy[:, 0].min(), -np.inf), 1e9]
+    lo, hi = xy_bounds(xy)
+    assert np.array_equal(lo, xy.min(axis=0)) and np.array_equal(hi, xy.max(axis=0))
+    assert np.array_equal(xy_bounds([[3.0, -2.0]])[0], [3.0, -2.0])
