@@ -58,7 +58,8 @@ RIFT_PARAMS = PhaseCongruencyParams(mult=1.6, sigma_onf=0.75, k=1.0, g=3.0, angu
 
 @lru_cache(maxsize=8)
 def _filters(rows: int, cols: int, params: PhaseCongruencyParams):
-    """Per orientation, the complex64-ready filters (log-Gabor x angular spread) of every scale."""
+    """Per orientation, the complex64-ready filters (log-Gabor x angular spread) of every scale,
+    stacked (nscale, rows, cols)."""
     p = params
     fy = fft.fftfreq(rows)[:, None]
     fx = fft.fftfreq(cols)[None, :]
@@ -83,7 +84,7 @@ def _filters(rows: int, cols: int, params: PhaseCongruencyParams):
             spread = (np.cos(np.minimum(np.abs(np.arctan2(ds, dc)) * p.norient / 2, math.pi)) + 1) / 2
         else:
             spread = np.exp(-np.arctan2(ds, dc) ** 2 / (2 * theta_sigma ** 2))
-        out.append([(lg * spread).astype(np.float32) for lg in log_gabor])
+        out.append(np.stack([(lg * spread).astype(np.float32) for lg in log_gabor]))
     return out
 
 
@@ -95,7 +96,7 @@ def _orientations(image: np.ndarray, p: PhaseCongruencyParams):
     spectrum = fft.fft2(img, workers=-1).astype(np.complex64)
     eps = np.float32(p.eps)
     for filters in _filters(rows, cols, p):
-        eo = [fft.ifft2(spectrum * f, workers=-1) for f in filters]
+        eo = fft.ifft2(spectrum * filters, workers=-1)  # every scale in one call: the same values, faster
         amplitude = [np.abs(e) for e in eo]
         sum_an = np.sum(amplitude, axis=0)
         max_an = np.max(amplitude, axis=0)
