@@ -115,3 +115,28 @@ def test_nodata_beside_an_alpha_band_reads_without_a_warning(raster_writer):
         warnings.simplefilter("ignore", PendingDeprecationWarning)
         image, valid = read_image(info, (1, 2, 3), window=Window(-5, -5, 80, 80))
     assert image.shape == (80, 80) and valid.sum() == 64 * 64
+
+
+def test_a_raster_without_a_mask_reads_as_if_its_every_pixel_were_masked_valid(raster_writer, tmp_path):
+    """Inside the raster an all-valid mask is not read (GDAL would cache its blocks): the pixels and the
+    validity (NaN invalid, parts outside the raster invalid) are those of the same raster with an explicit
+    all-valid mask, read window by window and decimated."""
+    import rasterio
+
+    data = np.random.default_rng(2).normal(size=(2, 90, 120)).astype("float32")
+    data[:, 20:30, 40:55] = np.nan
+    plain = raster_writer("plain.tif", data)
+    masked = str(tmp_path / "masked.tif")
+    with rasterio.open(plain) as src:
+        profile = src.profile
+    with rasterio.Env(GDAL_TIFF_INTERNAL_MASK=True), rasterio.open(masked, "w", **profile) as dst:
+        dst.write(data)
+        dst.write_mask(np.full((90, 120), 255, np.uint8))
+    a, b = open_raster(plain), open_raster(masked)
+    with rasterio.open(plain) as p, rasterio.open(masked) as m:
+        assert p.mask_flag_enums[0] != m.mask_flag_enums[0]
+    for window, shape in [(None, None), (None, (30, 40)), (Window(10, 5, 50, 40), None), (Window(-8, 70, 40, 40), None),
+                          (Window(100, -10, 30, 30), (10, 10))]:
+        for bands in [(1,), (2,)]:
+            (ia, va), (ib, vb) = read_image(a, bands, window, shape), read_image(b, bands, window, shape)
+            assert np.array_equal(ia, ib) and np.array_equal(va, vb) and not va.all() and va.any()
