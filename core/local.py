@@ -122,7 +122,7 @@ def local_correction(estimate: Estimate, target, target_bands, reference, refere
     def measure(chunk, mon=None):
         return refine_points(model, chunk, target, target_bands, reference, reference_bands, refine, mon)
 
-    if map_chunks is None:  # refine_points measures the windows on this machine's threads
+    if map_chunks is None:  # the windows are measured here
         points = measure(sites, monitor.span(0.0, 0.9))
     else:
         monitor.report(0.05, "local shifts")

@@ -96,7 +96,7 @@ def _orientations(image: np.ndarray, p: PhaseCongruencyParams):
     spectrum = fft.fft2(img, workers=-1).astype(np.complex64)
     eps = np.float32(p.eps)
     for filters in _filters(rows, cols, p):
-        eo = fft.ifft2(spectrum * filters, workers=-1)  # every scale in one call: the same values, faster
+        eo = fft.ifft2(spectrum * filters, workers=-1, overwrite_x=True)  # every scale at once: same values, faster
         amplitude = [np.abs(e) for e in eo]
         sum_an = np.sum(amplitude, axis=0)
         max_an = np.max(amplitude, axis=0)

@@ -57,9 +57,9 @@ class ThinPlateSplineModel:
 
     def apply(self, xy, max_cells: int = 250_000) -> np.ndarray:
         """Evaluate in chunks of points so that the kernel matrix stays within ``max_cells`` values
-        (memory bounded however many control points there are; 2 MB chunks stay in the CPU's cache: a
-        quarter faster than 32 MB ones). No BLAS: its threads would spin beside
-        the threads that call this (the warp's tiles), and its sums differ between library builds."""
+        (memory bounded however many control points there are; temporaries of 2 MB each stay in the
+        CPU's cache: a quarter faster than 32 MB ones). No BLAS: its threads would spin beside the threads
+        that call this (the spline warp's lattice chunks), and its sums differ between library builds."""
         q = self._q(xy)
         c = (self.control - self.center) / self.scale
         c2 = (c ** 2).sum(axis=1)
@@ -91,7 +91,7 @@ class ThinPlateSplineModel:
         ``center``/``scale`` fix the normalisation (the penalty is defined in normalised units)."""
         src, dst = as_xy(src), as_xy(dst)
         if len(src) < cls.n_min:
-            raise ValueError(f"tps needs at least 3 points, got {len(src)}")
+            raise ValueError(f"tps needs at least {cls.n_min} points, got {len(src)}")
         center = src.mean(axis=0) if center is None else np.asarray(center, float)
         scale = (float(np.abs(src - center).max()) or 1.0) if scale is None else float(scale)
         q = (src - center) / scale

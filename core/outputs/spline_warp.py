@@ -83,7 +83,8 @@ def strip_lattice(result, transform: Affine, crs, r0: int, n: int, width: int, s
     """Target pixel positions (rows, cols, 2) of the centres of the output pixels every ``step``
     pixels from the strip's first pixel (column 0, row ``r0``), far enough to bracket every pixel of
     its ``n`` rows; through the exact inverse of the model (``nan`` where it has none), in chunks
-    of :data:`LATTICE_CHUNK` nodes on threads."""
+    of :data:`LATTICE_CHUNK` nodes on threads (each chunk is solved until all its nodes are within Newton's
+    tolerance, so a node's last digits depend on its chunk, never on the number of threads)."""
     cols = np.arange(0, width + step, step, dtype=float)
     rows = np.arange(0, n + step, step, dtype=float)
     cc, rr = np.meshgrid(cols + 0.5, r0 + rows + 0.5)

@@ -331,3 +331,23 @@ def test_every_resampling_choice_warps(tmp_path, results, resampling):
     with rasterio.open(out) as ds:
         data = ds.read(1)
     assert data.std() > 1
+
+
+def test_positions_between_lattice_nodes_are_bilinear_and_a_node_without_inverse_blanks_its_cells():
+    """A strip's lattice (nodes every ``step`` output px) interpolated for tiles that do not start on a
+    node: a linear field is reproduced exactly; a node without an inverse (NaN) empties only the cells
+    around it."""
+    from hamta.core.outputs.spline_warp import interpolate
+
+    step, rows, cols = 7, 6, 9
+    ny, nx = np.mgrid[0:rows, 0:cols] * float(step)
+    lattice = np.stack([3.0 + 0.5 * nx - 0.25 * ny, -2.0 + 0.125 * nx + 1.5 * ny], axis=-1)
+    c0, t0, w, h = 5, 3, 40, 29  # pixels c0 .. c0 + w, t0 .. t0 + h of the strip
+    xs, ys = interpolate(lattice, step, c0, t0, w, h)
+    px, py = np.meshgrid(c0 + np.arange(w, dtype=float), t0 + np.arange(h, dtype=float))
+    assert xs.shape == (h, w) and np.allclose(xs, 3.0 + 0.5 * px - 0.25 * py, atol=1e-12)
+    assert np.allclose(ys, -2.0 + 0.125 * px + 1.5 * py, atol=1e-12)
+    lattice[2, 3] = np.nan
+    xs, ys = interpolate(lattice, step, c0, t0, w, h)
+    near = (px >= 2 * step) & (px < 4 * step) & (py >= step) & (py < 3 * step)  # the four cells it is a corner of
+    assert np.isnan(xs[near]).all() and np.isfinite(xs[~near]).all() and np.array_equal(np.isnan(xs), np.isnan(ys))
