@@ -166,7 +166,7 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
     with WindowReader(target, target_bands) as targets, WindowReader(reference, reference_bands) as references:
         for i, p in enumerate(pts):
             if i % POINTS_PER_REPORT == 0:
-                monitor.report(i / max(len(pts), 1), "refining")
+                monitor.report(i / len(pts), "refining")
             f = _refine_one(p, inverse, targets, references, params.template_px, params.search_px,
                             params.min_ncc, params.similarity)
             if f is not None:

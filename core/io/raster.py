@@ -221,7 +221,7 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
         Window in whole full-resolution pixels; the whole raster by default. Parts outside the
         raster read as invalid (through GDAL's slower boundless path).
     dataset : open rasterio dataset of ``info.path``, optional
-        Saves re-opening the file when many small windows are read (see :func:`open_dataset`).
+        Saves re-opening the file when many small windows are read (see :class:`hamta.core.io.windows.WindowReader`).
     out_shape : (rows, cols), optional
         Size of the returned arrays; pixel (x, y) of the output covers the full-resolution area
         ``window.col_off + x * window.width / cols`` (corner convention, so no half-pixel shift).
@@ -248,11 +248,12 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
             data = ds.read(bands, window=window, out_shape=full_shape, resampling=resampling,
                            boundless=not inside, fill_value=0)
             data = np.abs(data) if info.is_complex else data
-        flags = ds.mask_flag_enums
         # GDAL would compute an all-valid mask block by block and keep those blocks in its cache
         # (120 MB for a 10980 px band read once); inside the raster such a mask is all true anyway.
-        masks = None if inside and all(MaskFlags.all_valid in flags[b - 1] for b in bands) else ds.read_masks(
-            bands, window=window, out_shape=full_shape, resampling=Resampling.nearest, boundless=not inside)
+        flags = ds.mask_flag_enums if inside else ()
+        all_valid = inside and all(MaskFlags.all_valid in flags[b - 1] for b in bands)
+        masks = None if all_valid else ds.read_masks(bands, window=window, out_shape=full_shape,
+                                                     resampling=Resampling.nearest, boundless=not inside)
     data = data.astype(np.float32, copy=False)
     valid = np.all(np.isfinite(data), axis=0)
     if masks is not None:
@@ -290,11 +291,6 @@ def _read_errors_named(info: RasterInfo):
     except (RasterioError, OSError) as exc:
         raise InputError(f"The raster '{info.path}' could not be read: it may be truncated or corrupt, or a file it "
                          f"refers to is missing ({str(exc).strip() or type(exc).__name__}).") from None
-
-
-def open_dataset(info: RasterInfo):
-    """Open ``info.path`` for repeated :func:`read_image` calls (use as a context manager)."""
-    return rasterio.open(info.path)
 
 
 def _read_amplitude_by_strips(ds, bands, window, out_shape, boundless):

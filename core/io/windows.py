@@ -13,9 +13,10 @@ import dataclasses
 import threading
 
 import numpy as np
+import rasterio
 from rasterio.windows import Window
 
-from .raster import RasterInfo, numpy_dtype, open_dataset, read_image
+from .raster import RasterInfo, numpy_dtype, read_image
 from .scope import current, dataset_for, file_key
 
 HOLD_PIXELS = 4_000_000  # largest raster without tiles held whole: 20 MB of grey image and mask, read once
@@ -39,7 +40,7 @@ class WindowReader:
 
     def __enter__(self) -> "WindowReader":
         if self._hold:
-            with self._run_dataset() if self._shared else dataset_for(self.info.path) as ds:
+            with dataset_for(self.info.path) as ds:  # the run's, when there is a run
                 if ds.block_shapes[0][1] >= self.info.width:  # no tiles: a window decodes from a row's start
                     plain = dataclasses.replace(self.info, collar_fill=None)  # the collar is masked per window
                     self._held = read_image(plain, self.bands, dataset=ds)
@@ -81,7 +82,7 @@ class WindowReader:
     def _dataset(self):
         ds = getattr(self._local, "ds", None)
         if ds is None:  # a GDAL dataset is not shared by threads
-            ds = self._local.ds = open_dataset(self.info)
+            ds = self._local.ds = rasterio.open(self.info.path)
             with self._lock:
                 self._opened.append(ds)
         return ds
