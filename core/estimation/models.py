@@ -270,7 +270,10 @@ def model_from_dict(d: dict, reference_transform=None, reference_crs_wkt=None):
 
 
 def local_jacobian(model, xy, step: float = 0.5) -> np.ndarray:
-    """(N, 2, 2) derivative of ``model.apply`` at ``xy`` by central differences."""
+    """(N, 2, 2) derivative of ``model.apply`` at ``xy``: the model's own where it has one (a thin
+    plate spline's, exact and in 40 % of the time), else by central differences."""
+    if hasattr(model, "jacobian"):
+        return model.jacobian(xy)
     xy = as_xy(xy)
     dx = np.array([step, 0.0])
     dy = np.array([0.0, step])

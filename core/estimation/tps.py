@@ -5,7 +5,8 @@ residuals and ``report.json`` form alike); the local correction's model (:mod:`h
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Optional
 
 import numpy as np
 
@@ -47,6 +48,7 @@ class ThinPlateSplineModel:
     weights: np.ndarray  # (n, 2)
     affine: np.ndarray  # (3, 2)
     smoothing: float = 0.0
+    loo: Optional[np.ndarray] = field(default=None, repr=False)  # leave-one-out errors, when fitted here
 
     kind = "tps"
     matrix = None
@@ -72,6 +74,27 @@ class ThinPlateSplineModel:
             affine = self.affine[0] + part[:, :1] * self.affine[1] + part[:, 1:] * self.affine[2]
             out[i:i + chunk] = np.einsum("ij,jk->ik", _tps_kernel(r2), self.weights) + affine
         return out
+
+    def jacobian(self, xy, max_cells: int = 250_000) -> np.ndarray:
+        """(N, 2, 2) derivative of :meth:`apply` at ``xy`` (``[n, output, input]``), exact:
+        ``dU/dq = 2 (q - q_i) (log r2 + 1)``, zero at a control point; the ``+ 1`` terms sum to zero
+        (the weights are orthogonal to the affine part: ``sum w_i = sum w_i q_i = 0``). In chunks as
+        :meth:`apply`."""
+        q = self._q(xy)
+        c = (self.control - self.center) / self.scale
+        out = np.empty((len(q), 2, 2))
+        chunk = max(1, max_cells // max(len(c), 1))
+        for i in range(0, len(q), chunk):
+            part = q[i:i + chunk]
+            dx = part[:, :1] - c[None, :, 0]
+            dy = part[:, 1:] - c[None, :, 1]
+            r2 = dx * dx + dy * dy
+            g = np.zeros_like(r2)
+            np.log(r2, out=g, where=r2 > 1e-300)
+            g *= 2.0
+            out[i:i + chunk, :, 0] = np.einsum("ij,jk->ik", g * dx, self.weights) + self.affine[1]
+            out[i:i + chunk, :, 1] = np.einsum("ij,jk->ik", g * dy, self.weights) + self.affine[2]
+        return out / self.scale
 
     def residuals(self, src, dst) -> np.ndarray:
         return np.linalg.norm(self.apply(src) - as_xy(dst), axis=1)
@@ -100,10 +123,10 @@ class ThinPlateSplineModel:
             candidates = [0.0] + list(10.0 ** np.arange(-7.0, 3.5, 0.5))
             fits = [cls._solve(q, rhs, lam) for lam in candidates]
             best = int(np.argmin([np.sqrt(np.nanmean(f[1] ** 2)) for f in fits]))
-            sol, smoothing = fits[best][0], candidates[best]
+            (sol, loo), smoothing = fits[best], candidates[best]
         else:
-            sol = cls._solve(q, rhs, float(smoothing))[0]
-        return cls(src.copy(), center, scale, sol[:-3], sol[-3:], float(smoothing))
+            sol, loo = cls._solve(q, rhs, float(smoothing))
+        return cls(src.copy(), center, scale, sol[:-3], sol[-3:], float(smoothing), loo)
 
     @classmethod
     def _solve(cls, q, rhs, smoothing):
@@ -128,7 +151,10 @@ class ThinPlateSplineModel:
         return sol, np.linalg.norm(loo, axis=1)
 
     def loo_residuals(self, src=None, dst=None) -> np.ndarray:
-        """Exact leave-one-out errors at the control points (Rippa 1999; Wahba's lemma when smoothing)."""
+        """Exact leave-one-out errors at the control points (Rippa 1999; Wahba's lemma when smoothing):
+        those of the fit when it was fitted here (solving the system again costs as much as the fit)."""
+        if self.loo is not None:
+            return self.loo.copy()
         q = self._q(self.control)
         dst = self.apply(self.control) + (self.smoothing * self.weights if self.smoothing else 0.0)
         return self._solve(q, np.vstack([dst, np.zeros((3, 2))]), self.smoothing)[1]

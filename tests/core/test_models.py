@@ -91,9 +91,25 @@ def test_tps_leave_one_out_matches_brute_force(smoothing, points):
     src = src[:40]
     dst = apply_matrix(H, src) + rng.normal(0, 0.4, src.shape)
     full = ThinPlateSplineModel.fit(src, dst, smoothing=smoothing)
-    loo = full.loo_residuals(src, dst)
+    kept = full.loo_residuals(src, dst)  # the fit's own
+    again = model_from_dict(full.to_dict()).loo_residuals(src, dst)  # solved again from the model alone
     brute = _brute_loo(lambda s, d: ThinPlateSplineModel.fit(s, d, smoothing, full.center, full.scale), src, dst)
-    assert np.allclose(loo, brute, atol=1e-6)
+    assert np.allclose(kept, brute, atol=1e-6) and np.allclose(again, brute, atol=1e-6)
+
+
+def test_tps_jacobian_is_the_derivative_of_the_spline(points):
+    """The spline's exact derivative, in chunks, equals central differences of a small step, away
+    from and at its control points (where the kernel's term vanishes)."""
+    from hamta.core.estimation.models import local_jacobian
+
+    src, rng = points
+    tps = ThinPlateSplineModel.fit(src, apply_matrix(H, src) + rng.normal(0, 0.5, src.shape), smoothing=0)
+    probe = np.vstack([rng.random((50, 2)) * 900, src[:5]])
+    h = 1e-4
+    numeric = np.stack([(tps.apply(probe + d) - tps.apply(probe - d)) / (2 * h) for d in ([h, 0], [0, h])], axis=2)
+    exact = tps.jacobian(probe, max_cells=len(src) * 7)
+    assert np.allclose(exact, numeric, rtol=0, atol=1e-6)
+    assert np.array_equal(local_jacobian(tps, probe), tps.jacobian(probe))
 
 
 @pytest.mark.parametrize("kind", MODEL_CHOICES)
