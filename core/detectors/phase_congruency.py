@@ -97,11 +97,11 @@ def _orientations(image: np.ndarray, p: PhaseCongruencyParams):
     eps = np.float32(p.eps)
     for filters in _filters(rows, cols, p):
         eo = fft.ifft2(spectrum * filters, workers=-1, overwrite_x=True)  # every scale at once: same values, faster
-        amplitude = [np.abs(e) for e in eo]
-        sum_an = np.sum(amplitude, axis=0)
-        max_an = np.max(amplitude, axis=0)
-        sum_e = np.sum([e.real for e in eo], axis=0)
-        sum_o = np.sum([e.imag for e in eo], axis=0)
+        amplitude = np.abs(eo)
+        sum_an = amplitude.sum(axis=0)
+        max_an = amplitude.max(axis=0)
+        sum_e = eo.real.sum(axis=0)
+        sum_o = eo.imag.sum(axis=0)
         x_energy = np.sqrt(sum_e ** 2 + sum_o ** 2) + eps
         mean_e, mean_o = sum_e / x_energy, sum_o / x_energy
         energy = np.zeros((rows, cols), np.float32)

@@ -8,7 +8,6 @@ Coordinates: windows in whole full-resolution pixels of the raster (corner conve
 """
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import threading
 
@@ -56,7 +55,8 @@ class WindowReader:
     def read(self, window: Window):
         """(image, valid) of ``window``, parts outside the raster invalid and 0."""
         if self._held is None and self._shared is not None:
-            with self._run_dataset() as ds:
+            ds, lock = self._shared
+            with lock:
                 return read_image(self.info, self.bands, window, dataset=ds)
         if self._held is None:
             return read_image(self.info, self.bands, window, dataset=self._dataset())
@@ -72,12 +72,6 @@ class WindowReader:
             ok &= ~self.info.collar_fill.window_mask(c0, r0, w, h, (h, w))
             out[~ok] = 0
         return out, ok
-
-    @contextlib.contextmanager
-    def _run_dataset(self):
-        ds, lock = self._shared
-        with lock:
-            yield ds
 
     def _dataset(self):
         ds = getattr(self._local, "ds", None)
