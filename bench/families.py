@@ -28,11 +28,12 @@ from .synthetic import make_landscape
 
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
             "should-fail", "collar") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch",
-                                                                          "basemap", "speed")
+                                                                          "basemap", "basemap-real", "speed")
 # The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
 # output writer against gdalwarp, no registration cases of its own), 'nonrigid' (local distortion, for the
 # local correction), 'batch' (throughput on a Dask cluster, no cases of its own) and 'basemap' (onto a local
-# tile server, a study of its own: hamta.bench.goals.basemap) and 'speed' (whole runs against each peer on
+# tile server, a study of its own: hamta.bench.goals.basemap; 'basemap-real' onto tiles of another date:
+# hamta.bench.goals.basemap_real) and 'speed' (whole runs against each peer on
 # its own ground: hamta.bench.goals.speed) run on request.
 DEFAULT_FAMILIES = FAMILIES[:11]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
@@ -284,7 +285,7 @@ _SPECS = {"crops": _crops, "should-fail": _should_fail, "collar": _collar,
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
           "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: [], "basemap": lambda quick: [],
-          "speed": lambda quick: []}
+          "basemap-real": lambda quick: [], "speed": lambda quick: []}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -425,6 +426,10 @@ def available(family: str, data_dir: str) -> bool:
         return multimodal_set.available(data_dir, family)
     if family == "basemap":  # tiles cut from the Landsat sample, no fallback
         return os.path.exists(os.path.join(data_dir, SOURCE_FILES["landsat"]))
+    if family == "basemap-real":  # real images of several dates
+        from .goals.basemap_real import available as real_available
+
+        return real_available(data_dir)
     return True
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 def all_studies():
     """Every study, the papers' reproductions first."""
     from .goals.basemap import STUDY as basemap
+    from .goals.basemap_real import STUDY as basemap_real
     from .goals.batch import STUDY as batch
     from .goals.large import STUDY as large
     from .goals.speed import STUDY as speed
@@ -14,4 +15,4 @@ def all_studies():
     from .reproductions.rilbp import STUDY as rilbp
     from .reproductions.sibrif import STUDY as sibrif
 
-    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, speed]
+    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, speed]

@@ -34,7 +34,7 @@ from .verify import VerifyParams, verify
 
 @run_scope()
 def register(target, reference, method: str = AUTO, params=None, options: RegisterOptions = RegisterOptions(),
-             progress=None, is_canceled=None, map_chunks=None, target_pixels=None) -> RegistrationResult:
+             progress=None, is_canceled=None, map_chunks=None, target_pixels=None, placed=None) -> RegistrationResult:
     """Register the ``target`` raster onto the ``reference`` raster, and verify the result.
 
     Parameters
@@ -57,6 +57,10 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
     target_pixels : int, optional
         A smaller pixel budget for a target searched without its georeferencing: its expected size
         in the reference (see :mod:`hamta.core.remote`).
+    placed : affine.Affine, optional
+        Where a search already placed the target: its pixels (corner convention) -> the reference's
+        map coordinates. It stands in for the target's own georeferencing as the prior (the result
+        keeps the target as opened).
 
     Returns
     -------
@@ -73,7 +77,7 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
         (the original exception is its ``__cause__``).
     """
     monitor = Monitor(progress, is_canceled)
-    inputs = read_inputs(target, reference, options, monitor.span(0.0, 0.1), target_pixels)
+    inputs = read_inputs(target, reference, options, monitor.span(0.0, 0.1), target_pixels, placed)
     rest = monitor.span(0.1, 1.0)
     if method == AUTO:
         if params:
@@ -82,10 +86,18 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
             step_options = options if options.refine != "auto" else dataclasses.replace(options, refine=refine)
             return match_and_fit(inputs, name, p, step_options, mon, map_chunks)
 
-        return register_auto(attempt, options, rest, chain_for(inputs.plan.mode))
+        return _unplaced(register_auto(attempt, options, rest, chain_for(inputs.plan.mode)), placed, target)
     params = get_method(method).make_params(params)  # a wrong name or parameter is the caller's, not a crash
     with method_crashes(method):
-        return match_and_fit(inputs, method, params, options, rest, map_chunks)
+        return _unplaced(match_and_fit(inputs, method, params, options, rest, map_chunks), placed, target)
+
+
+def _unplaced(result: RegistrationResult, placed, target) -> RegistrationResult:
+    """A result registered from a ``placed`` prior, with the target as opened and the plan a search's."""
+    if placed is None:
+        return result
+    return dataclasses.replace(result, target=open_raster(target, "target"),
+                               plan=dataclasses.replace(result.plan, mode="search"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -103,10 +115,15 @@ class Inputs:
     timings: dict
 
 
-def read_inputs(target, reference, options: RegisterOptions, monitor: Monitor, target_pixels=None) -> Inputs:
-    """Open both rasters, choose their bands, plan the overlap and read the working images."""
+def read_inputs(target, reference, options: RegisterOptions, monitor: Monitor, target_pixels=None,
+                placed=None) -> Inputs:
+    """Open both rasters, choose their bands, plan the overlap and read the working images (``placed``:
+    see :func:`register`)."""
     clock = Clock()
     tgt_info, ref_info = open_raster(target, "target"), open_raster(reference, "reference")
+    if placed is not None:
+        tgt_info = dataclasses.replace(tgt_info, transform=placed, crs=ref_info.crs, georef_source="geotransform")
+        options = dataclasses.replace(options, target_georef="use")
     if not ref_info.georeferenced and not options.pixel_mode:
         raise ReferenceNotGeoreferenced(
             f"reference '{ref_info.path}' has no georeferencing (no geotransform or GCPs), so the result could not "

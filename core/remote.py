@@ -4,12 +4,14 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
 
 - for a georeferenced target (its georeferencing used): its footprint plus a margin
   (``FOOTPRINT_MARGIN``), at the zoom whose pixels match the target's;
-- otherwise the search area (``RegisterOptions.extent``), searched coarse to fine: read at the
-  finest zoom where it fits the pixel budget and holds at most ``2 * AREA_SHARE`` times the target's
-  pixels (a layer's finest zooms often only magnify coarser data), the target is located there;
-  when another zoom is nearer the target's own pixels (finer or coarser), its footprint (plus
-  ``LOCATED_MARGIN``) is read at that zoom and the target registered again onto it. The final
-  registration is verified like any other; the coarse one only says where to look.
+- otherwise the search area (``RegisterOptions.extent``), searched coarse to fine: read at the zoom
+  where its longer side is about 2048 px, then 4096 px (``AREA_SIDES``), the target is located by
+  features voting for a pose (:mod:`hamta.core.matching.locate`: any rotation, scale and place); each
+  of the few places where most features agree has its footprint (plus ``LOCATED_MARGIN``) read at the
+  zoom nearest the target's own pixels, and the target is registered there with that place as its
+  prior, as if it had been georeferenced there. Each such registration is verified like any other;
+  the first verified one is the result (else the best unverified one). A place found is only where
+  to look, never a result.
 
 Each area becomes a local GeoTIFF in the service's CRS (EPSG:3857 for XYZ layers) under the cache
 folder (a private temporary folder without one), so outputs are in the service's CRS and a rerun
@@ -20,26 +22,28 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import time
 
 import numpy as np
+from affine import Affine
 
 from .basemap.fetch import Fetcher, ServiceError
 from .basemap.services import TileService
-from .basemap.tiles import fetch_area, tile_range
-from .coords import pixel_to_map, raster_outline
+from .basemap.tiles import NoTiles, fetch_area, tile_range
+from .coords import map_to_pixel, pixel_to_map, raster_outline
 from .errors import InputError, InsufficientMatchesError
 from .extent import bounds_in, parse_extent
-from .io.raster import open_raster
+from .io.raster import open_raster, read_image
 from .io.working import footprint
+from .matching.locate import features, locate
 from .options import RegisterOptions
 from .pipeline import register
 from .progress import Monitor
+from .verify import result_rank
 
 FOOTPRINT_MARGIN = 0.3  # of the footprint's larger side, each way: georeferencing off by up to a third of it
 LOCATED_MARGIN = 0.1  # the same once the coarse search has located the target (to a coarse pixel or so)
 MIN_AREA_PX = 64  # a search area narrower than this at the finest zoom cannot hold a target
-AREA_SHARE = 7  # the target is first looked for as if it covered 1/7 of the search area: a target covering 1/25
-# to 1/2 of it is then within a factor 2 of that scale, which every method of 'auto' matches across
 
 
 def register_remote(target, service: TileService, options: RegisterOptions, monitor: Monitor, fetcher=None,
@@ -51,11 +55,12 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
     info = open_raster(target, "target")
     local = dataclasses.replace(options, extent=None)
 
-    def register_onto(path, span, within=None, **extra):
-        """``within``: the part of the area file to search (bounds in its CRS); all of it by default."""
+    def register_onto(path, span, within=None, options=None, **extra):
+        """``within``: the part of the area file to search (bounds in its CRS); all of it by default.
+        ``options``: the run's unless given (a search's places get a shorter time budget)."""
         area = None if within is None else ",".join(f"{v:.10g}" for v in within) + f",{service.crs}"
-        return register(target, path, options=dataclasses.replace(local, extent=area), progress=span.report,
-                        is_canceled=span.canceled, **extra, **kwargs)
+        return register(target, path, options=dataclasses.replace(options or local, extent=area),
+                        progress=span.report, is_canceled=span.canceled, **extra, **kwargs)
 
     notes = []
     if uses_georeferencing(info, options):
@@ -103,62 +108,216 @@ class _Reader:
 
     def __init__(self, service: TileService, fetcher: Fetcher):
         self.service, self.fetcher, self.zooms = service, fetcher, []
+        self.finest, self.empty_from = service.zmax, None
         if fetcher.cache:
             os.makedirs(fetcher.cache, mode=0o700, exist_ok=True)  # made private; an existing folder is as it is
         self.folder = os.path.join(fetcher.cache, "areas") if fetcher.cache else _temporary()
 
     def read(self, bounds, z: int, monitor: Monitor) -> str:
-        tiles = tile_range(self.service, bounds, z)
-        if tiles.count > self.fetcher.max_requests:
-            raise ServiceError(f"Reading the area at zoom {z} from {self.service.label} needs {tiles.count} tiles, "
-                               f"above the cap of {self.fetcher.max_requests}: choose a smaller search area.")
-        self.zooms.append(z)
-        return fetch_area(self.service, tiles, self.fetcher, self.folder, monitor)
+        """The GeoTIFF of ``bounds`` at zoom ``z`` or, where the layer has no tile there, at the nearest
+        coarser zoom that has (a plain tile template does not say its finest zoom; reads after that one
+        stop there); ``self.zooms`` records the zoom read."""
+        z = min(z, self.finest)
+        while True:
+            tiles = tile_range(self.service, bounds, z)
+            if tiles.count > self.fetcher.max_requests:
+                raise ServiceError(f"Reading the area at zoom {z} from {self.service.label} needs {tiles.count} "
+                                   f"tiles, above the cap of {self.fetcher.max_requests}: choose a smaller search "
+                                   "area.")
+            try:
+                path = fetch_area(self.service, tiles, self.fetcher, self.folder, monitor)
+            except NoTiles:
+                self.empty_from = self.empty_from or z
+                if z <= self.service.zmin or z <= self.empty_from - FINER_STEPS:
+                    raise
+                self.finest = z = z - 1
+                continue
+            self.zooms.append(z)
+            return path
+
+
+FINER_STEPS = 3  # zooms tried below one whose tiles were all missing, before the area counts as empty
 
 
 def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, register_onto, notes):
-    """Coarse to fine over the search area (see the module docstring); the result and the zoom it was
-    registered onto. ``notes`` get what was searched."""
+    """Locate the target in the search area, coarse to fine, and register it where it was found (see the
+    module docstring); the result and the zoom it was registered onto. ``notes`` get what was searched."""
     service = reader.service
     bounds = _search_bounds(options.extent, service)
-    pixels = min(options.max_working_pixels, 2 * AREA_SHARE * info.width * info.height)  # not far finer than the target
-    z = _zoom_in_budget(service, bounds, 0.0, pixels)
+    target, per_px = _target_features(info, options)
+    zooms = _search_zooms(service, bounds)
+    deadline = time.monotonic() + options.auto_budget_s
+
+    def budgeted():
+        """The options of one place: 'auto' within :data:`PLACE_BUDGET_S` and what is left of the run's budget."""
+        left = max(0.0, deadline - time.monotonic())
+        return dataclasses.replace(options, auto_budget_s=min(left, PLACE_BUDGET_S))
+
+    best, places, searched = None, [], []
+    for i, z in enumerate(zooms):
+        span = monitor.span(i / len(zooms), (i + 1) / len(zooms))
+        path = reader.read(bounds, z, span.span(0.0, 0.3))
+        z = reader.zooms[-1]
+        if z in searched:  # the layer's finest zoom was reached: this one was searched already
+            continue
+        searched.append(z)
+        span.report(0.3, f"locating the target at zoom {z}")
+        area = open_raster(path, "reference")
+        image, valid = read_image(area, (1, 2, 3))
+        _outside(valid, area.transform, bounds)
+        found = [c for c in locate(target[0], target[1], *features(image, valid), target[2])
+                 if c.inliers >= MIN_INLIERS][:CANDIDATES]
+        del image, valid  # up to 16 Mpx each, not needed while the places are registered
+        notes.append(f"searched {_size_text(bounds, service)} at zoom {z} ({_pixel_text(service, z)} pixels): "
+                     + (", ".join(f"a place with {c.inliers} agreeing features" for c in found)
+                        or "no place with enough agreeing features"))
+        todo = []
+        for c in found:
+            placed = area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
+            if not _seen(placed, info, places) and len(places) < MAX_PLACES:
+                places.append(placed)
+                todo.append(placed)
+        for j, placed in enumerate(todo):
+            step = span.span(0.4 + 0.6 * j / len(todo), 0.4 + 0.6 * (j + 1) / len(todo))
+            if time.monotonic() > deadline:
+                notes.append(f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried")
+                break
+            result, z_fine = _register_placed(info, reader, placed, budgeted(), register_onto, step, notes)
+            if result is None:
+                continue
+            if not _overlaps(result, info, bounds):
+                notes.append(f"a place registered at zoom {z_fine} put the target outside the search area; it was "
+                             "not taken")
+                continue
+            if best is None or result_rank(result) > result_rank(best[0]):
+                best = result, z_fine
+            if result.verified:
+                return best
+    if (best is None or not best[0].verified) and time.monotonic() < deadline:
+        whole = _register_whole_area(info, reader, bounds, searched[0], budgeted(), register_onto,
+                                     monitor.span(0.95, 1.0), notes)
+        if whole is not None and (best is None or result_rank(whole[0]) > result_rank(best[0])):
+            best = whole
+    if best is None:
+        raise InsufficientMatchesError(
+            f"The target raster '{info.path}' was not found in the search area ({_size_text(bounds, service)}, "
+            f"read at zoom{'s' if len(searched) > 1 else ''} {', '.join(map(str, searched))}): "
+            + (f"none of the {len(places)} places that looked alike registered. " if places else
+               "no place in it looked enough like the target. ")
+            + "Zoom the map closer to where the target is (a search area a few times its size), and check that the "
+              "area holds it; a target that is mirrored, or whose ground has mostly changed since, may not be found.",
+            0, MIN_INLIERS) from None
+    return best
+
+
+MIN_INLIERS = 4  # agreeing features for a place to be registered there: the least a similarity fit can be
+# told from chance with, since the independent check of the registration decides, not the count
+CANDIDATES = 3  # places registered per zoom, most agreeing features first
+MAX_PLACES = 4  # places registered in all
+AREA_SHARE = 7  # the share of the area's pixels a target is assumed to cover when the whole area is registered
+PLACE_BUDGET_S = 8.0  # s of 'auto' at each place (the run's budget bounds the whole search): at a wrong place
+# every method fails, and the fast ones find a right place (median 4 s on the basemap-real family)
+TARGET_SIDE = 384  # px: the target's longer side when it is located: at this size, the shapes that last (field
+# boundaries, roads, shores) outweigh what changes between dates (crops, water levels); 768 px found less on the
+# basemap-real family
+AREA_SIDES = (1024, 2048, 4096)  # px: the search area's longer side at each zoom searched, coarse to fine: the target
+# at 1/30 of the area's side is still 136 px at the last
+
+
+def _target_features(info, options: RegisterOptions):
+    """The target's locating features: (keypoints, descriptors, working shape) and working px per target px."""
+    from .io.raster import resolve_bands
+
+    per_px = min(1.0, TARGET_SIDE / max(info.width, info.height))
+    shape = (max(1, round(info.height * per_px)), max(1, round(info.width * per_px)))
+    image, valid = read_image(info, resolve_bands(info, options.target_band), None, shape)
+    per_px = shape[1] / info.width
+    return (*features(image, valid), shape), per_px
+
+
+def _search_zooms(service: TileService, bounds) -> list:
+    """The zooms at which the search area's longer side is about each of :data:`AREA_SIDES` (coarsest
+    first; fewer where the layer's finest zoom is reached)."""
+    side = max(bounds[2] - bounds[0], bounds[3] - bounds[1])
+    zooms = []
+    for px in AREA_SIDES:
+        z = int(math.floor(math.log2(px * service.resolution(0) / side) + 0.2))
+        z = min(max(z, service.zmin), service.zmax)
+        if z not in zooms:
+            zooms.append(z)
+    return zooms
+
+
+def _register_whole_area(info, reader: _Reader, bounds, z: int, options: RegisterOptions, register_onto,
+                         monitor: Monitor, notes):
+    """When no place found verifies: the target registered onto the whole area read at zoom ``z`` as if it
+    covered :data:`AREA_SHARE` of it (the methods of 'auto' match across a factor 2 of scale, so a target
+    covering 1/25 to 1/2 of the area), then again at the zoom nearest its pixels where that registration
+    put it. Areas a few times the target's size, where the area's features are too few to vote, are
+    found this way; (result, zoom) or None."""
     path = reader.read(bounds, z, monitor.span(0.0, 0.1))
     try:
-        coarse = register_onto(path, monitor.span(0.1, 0.45), within=bounds,  # whole tiles reach beyond the area
-                               target_pixels=_guess_pixels(bounds, service, z))
+        coarse = register_onto(path, monitor.span(0.1, 0.5), within=bounds, options=options,
+                               target_pixels=_guess_pixels(bounds, reader.service, z))
     except InsufficientMatchesError as exc:
-        raise InsufficientMatchesError(
-            f"The target raster '{info.path}' was not found in the search area read at zoom {z} "
-            f"({_pixel_text(service, z)} pixels): {str(exc).rstrip('.')}. If the target covers less than about a "
-            "twenty-fifth of the area, give a smaller search area; check that the area holds the target.", exc.found,
-            exc.needed) from None
-    scale = _target_pixel(coarse.model, info)  # coarse reference pixels per target pixel
-    z_target = min(max(z + int(round(math.log2(1.0 / scale))), service.zmin), service.zmax)  # nearest its pixels
-    found = "found" if coarse.verified else "placed, without verification,"
-    notes.append(f"searched {_size_text(bounds, service)} at zoom {z} ({_pixel_text(service, z)} pixels) for the "
-                 f"target at 1/{AREA_SHARE} of the area's size (scales from 1/{2 * AREA_SHARE} to 2/{AREA_SHARE} of "
-                 f"it for most methods); it was {found} with pixels of {scale:.2g} of that zoom's")
-    if z_target == z:
-        return coarse, z
-    around = _around(coarse, info)
-    z_fine = _zoom_in_budget(service, around, service.resolution(z_target), options.max_working_pixels)
-    path = reader.read(around, z_fine, monitor.span(0.45, 0.5))
-    notes.append(f"then registered onto its footprint read at zoom {z_fine} ({_pixel_text(service, z_fine)} pixels)")
+        notes.append(f"the target registered onto the whole area at zoom {z} gave no model ({exc})")
+        return None
+    if not _overlaps(coarse, info, bounds):
+        return None
+    notes.append(f"the target registered onto the whole area at zoom {z}: {coarse.verification.verdict}")
+    fine, z_fine = _register_placed(info, reader, _placed_from(coarse, info), options, register_onto,
+                                    monitor.span(0.5, 1.0), notes)
+    if fine is not None and _overlaps(fine, info, bounds) and result_rank(fine) > result_rank(coarse):
+        return fine, z_fine
+    return coarse, z
+
+
+def _outside(valid: np.ndarray, transform, bounds) -> None:
+    """Mark the pixels of an area read as whole tiles that lie outside the search area ``bounds`` invalid:
+    a target is looked for where the user asked, not in the tiles' margins."""
+    (c0, r0), (c1, r1) = map_to_pixel(transform, np.array([[bounds[0], bounds[3]], [bounds[2], bounds[1]]]))
+    c0, r0 = max(0, int(math.floor(c0))), max(0, int(math.floor(r0)))
+    c1, r1 = int(math.ceil(c1)), int(math.ceil(r1))
+    valid[:r0] = False
+    valid[r1:] = False
+    valid[:, :c0] = False
+    valid[:, c1:] = False
+
+
+def _overlaps(result, info, bounds) -> bool:
+    """Whether ``result`` puts the target's footprint over the search area at all (the search answers where
+    the user asked: a target found beside the area, through the margin read around a place, is not taken)."""
+    from shapely.geometry import Polygon, box
+
+    outline = pixel_to_map(result.reference.transform,
+                           result.model.apply(raster_outline(info.width, info.height, 9, ends=True)))
+    polygon = Polygon(outline).buffer(0)
+    return polygon.is_valid and polygon.intersects(box(*bounds))
+
+
+def _seen(placed, info, places) -> bool:
+    """Whether ``placed`` puts the target's centre within a quarter of its size of a place in ``places``."""
+    centre = (info.width / 2.0, info.height / 2.0)
+    size = math.hypot(info.width, info.height) * math.sqrt(abs(placed.determinant))
+    x, y = placed * centre
+    return any(math.hypot(x - px, y - py) < 0.25 * size for px, py in (p * centre for p in places))
+
+
+def _register_placed(info, reader: _Reader, placed, options: RegisterOptions, register_onto, monitor: Monitor, notes):
+    """Register the target onto its footprint through ``placed`` (target px -> map), read at the zoom
+    nearest its pixels; (result, zoom), or (None, zoom) when no method found a model there."""
+    outline = pixel_to_map(placed, raster_outline(info.width, info.height, 9, ends=True))
+    around = _padded((*outline.min(axis=0), *outline.max(axis=0)), LOCATED_MARGIN)
+    pixel = math.sqrt(abs(placed.a * placed.e - placed.b * placed.d))
+    z = _zoom_in_budget(reader.service, around, pixel, options.max_working_pixels)
+    path = reader.read(around, z, monitor.span(0.0, 0.2))
+    z = reader.zooms[-1]
     try:
-        result = register_onto(path, monitor.span(0.5, 1.0))
+        result = register_onto(path, monitor.span(0.2, 1.0), options=options, placed=placed)
     except InsufficientMatchesError as exc:
-        notes.append(f"the registration at zoom {z_fine} found no model ({exc}); the result is the one at zoom {z}")
-        return coarse, z
-    if not result.verified and coarse.verified:
-        notes.append(f"the registration at zoom {z_fine} did not verify; the result is the one at zoom {z}")
-        return coarse, z
-    return result, z_fine
-
-
-def _guess_pixels(bounds, service: TileService, z: int) -> int:
-    """The target's working size when it is searched at zoom ``z``: :data:`AREA_SHARE` of the area."""
-    return int((bounds[2] - bounds[0]) * (bounds[3] - bounds[1]) / service.resolution(z) ** 2 / AREA_SHARE)
+        notes.append(f"a place registered at zoom {z} gave no model ({exc})")
+        return None, z
+    return result, z
 
 
 def _zoom_in_budget(service: TileService, bounds, pixel_size: float, max_pixels: int) -> int:
@@ -190,21 +349,18 @@ def _search_bounds(text: str, service: TileService):
     return x0, y0, x1, y1
 
 
-def _target_pixel(model, info) -> float:
-    """Reference pixels per target pixel, from the model's mapping of the target's outline."""
-    outline = raster_outline(info.width, info.height, 9, ends=True)
-    mapped = model.apply(outline)
-    from shapely.geometry import Polygon
+def _placed_from(result, info) -> Affine:
+    """The affine map (target px -> map) nearest ``result``'s model over the target (least squares on a grid)."""
+    grid = raster_outline(info.width, info.height, 9, ends=True)
+    xy = pixel_to_map(result.reference.transform, result.model.apply(grid))
+    design = np.column_stack([grid, np.ones(len(grid))])
+    (a, d), (b, e), (c, f) = np.linalg.lstsq(design, xy, rcond=None)[0]
+    return Affine(a, b, c, d, e, f)
 
-    area = Polygon(mapped).buffer(0).area
-    return math.sqrt(max(area, 1e-12) / (info.width * info.height))
 
-
-def _around(result, info):
-    """The bounds (map units) of the target's footprint through ``result``, plus :data:`LOCATED_MARGIN`."""
-    xy = pixel_to_map(result.reference.transform, result.model.apply(raster_outline(info.width, info.height, 9,
-                                                                                    ends=True)))
-    return _padded((*np.nanmin(xy, axis=0), *np.nanmax(xy, axis=0)), LOCATED_MARGIN)
+def _guess_pixels(bounds, service: TileService, z: int) -> int:
+    """The target's working size when the whole area is registered at zoom ``z``: :data:`AREA_SHARE` of it."""
+    return int((bounds[2] - bounds[0]) * (bounds[3] - bounds[1]) / service.resolution(z) ** 2 / AREA_SHARE)
 
 
 def _pixel_text(service: TileService, z: int) -> str:

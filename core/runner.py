@@ -13,7 +13,6 @@ import time
 from typing import Dict, Optional, Tuple
 
 from .auto import AUTO
-from .basemap.services import parse_service
 from .errors import OutputError, UnverifiedResult
 from .io.raster import input_files, open_raster
 from .io.scope import run_scope
@@ -26,6 +25,7 @@ from .outputs.warp import check_output_options
 from .parallel import threaded
 from .pipeline import register
 from .progress import Monitor
+from .reference import RasterReference, resolve_reference
 from .result import RegistrationResult, params_dict
 
 REGISTER_SHARE = 0.8
@@ -37,8 +37,9 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
         accept_unverified: bool = False, progress=None, is_canceled=None, map_chunks=None, fetcher=None
         ) -> Tuple[RegistrationResult, Dict[str, str]]:
     """Register ``target`` onto ``reference`` (see :func:`hamta.core.register`, which also explains
-    ``map_chunks``) and write ``paths``. A ``reference`` naming a map service (a tile-URL template, a
-    QGIS XYZ or WMS layer source) is read through ``fetcher`` (a :class:`hamta.core.basemap.fetch.Fetcher`;
+    ``map_chunks``) and write ``paths``. ``reference`` is text, a path or a resolved reference
+    (:mod:`hamta.core.reference`); a map service (a tile-URL template, a QGIS XYZ or WMS layer source)
+    is read through ``fetcher`` (a :class:`hamta.core.basemap.fetch.Fetcher`;
     by default one with the user's disk cache), see :mod:`hamta.core.remote`.
 
     Returns
@@ -57,11 +58,12 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
             raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
     else:
         get_method(method).make_params(params)  # a wrong name or parameter fails before any work
-    service = parse_service(reference)
+    reference = resolve_reference(reference)
+    raster = isinstance(reference, RasterReference)
     described_s = time.perf_counter()
     if paths is not None and paths.as_dict():
-        inputs = threaded(lambda job: open_raster(*job), [(target, "target")] + ([] if service else
-                                                                                 [(reference, "reference")]))
+        inputs = threaded(lambda job: open_raster(*job), [(target, "target")] + ([(reference.path, "reference")]
+                                                                                 if raster else []))
         check_destinations(paths, inputs)
         if paths.raster:
             check_output_options(output, inputs[0], paths.raster)
@@ -69,13 +71,13 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     request = run_request(method, params, options, accept_unverified)
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
     stage = monitor.span(0.0, share)
-    if service is not None:
+    if not raster:
         from .remote import register_remote  # its network code is imported only for a map service
 
-        result = register_remote(target, service, options, stage, fetcher=fetcher, method=method, params=params,
-                                 map_chunks=map_chunks)
+        result = register_remote(target, reference.service, options, stage, fetcher=fetcher, method=method,
+                                 params=params, map_chunks=map_chunks)
     else:
-        result = register(target, reference, method=method, params=params, options=options,
+        result = register(target, reference.path, method=method, params=params, options=options,
                           progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled, map_chunks=map_chunks)
     result = _opened_before(result, described_s)
     if share == 1.0:

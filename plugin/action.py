@@ -7,7 +7,7 @@ import traceback
 from qgis.core import Qgis, QgsApplication, QgsMessageLog, QgsProject, QgsRasterLayer, QgsVectorLayer
 from qgis.PyQt.QtCore import QUrl
 from qgis.PyQt.QtGui import QDesktopServices
-from qgis.PyQt.QtWidgets import QAction, QApplication, QPushButton
+from qgis.PyQt.QtWidgets import QAction, QApplication, QMessageBox, QProgressBar, QPushButton
 
 from .task import CANCELED, CRASHED, UNVERIFIED, WRITTEN, RegisterTask, tr
 
@@ -61,21 +61,45 @@ class AutoGeoreference:
                             job.options, job.accept_unverified, done=self.show_outcome)
         task.job = job
         self.tasks.append(task)
+        task.bar_item = self.progress_item(task)
         QgsApplication.taskManager().addTask(task)
         return task
+
+    def progress_item(self, task):
+        """A message bar item showing ``task``'s stage ('fetching tiles 42/99', 'locating the target…') and
+        progress, with a Cancel button, until it ends; updated in the main thread through the task manager."""
+        item = self.iface.messageBar().createMessage(TITLE, tr("Auto-georeference '{}': starting").format(
+            task.job.target_name))
+        bar = QProgressBar(item)
+        bar.setRange(0, 100)
+        item.layout().addWidget(bar)
+        cancel = QPushButton(tr("Cancel"), item)
+        cancel.clicked.connect(task.cancel)
+        item.layout().addWidget(cancel)
+        self.iface.messageBar().pushWidget(item, Qgis.Info, 0)
+
+        def update(task_id, progress, task=task):
+            if task in self.tasks and QgsApplication.taskManager().taskId(task) == task_id:
+                bar.setValue(int(progress))
+                item.setText(tr("Auto-georeference '{}': {}").format(task.job.target_name, tr(task.stage)))
+
+        QgsApplication.taskManager().progressChanged.connect(update)
+        item.disconnect_update = lambda: QgsApplication.taskManager().progressChanged.disconnect(update)
+        return item
 
     def show_outcome(self, task):
         """In the main thread, once ``task`` has ended."""
         if task in self.tasks:
             self.tasks.remove(task)
+        self.close_progress(task)
         job, written = task.job, task.written
         if task.outcome == CANCELED:
             self.push(tr("Auto-georeference of '{}' canceled; nothing was added.").format(job.target_name), Qgis.Info,
                       duration=10)
         elif task.outcome == WRITTEN:
             self.add_layers(job, written)
-            buttons = self.report_button(written) + [(tr("Open the GCPs in the Georeferencer"),
-                                                      lambda: self.open_georeferencer(job, written["points"]))]
+            buttons = [(tr("Details"), lambda: self.show_details(job, task.result))] + self.report_button(written) + [
+                (tr("Open the GCPs in the Georeferencer"), lambda: self.open_georeferencer(job, written["points"]))]
             self.push(self.success_text(job, task.result), Qgis.Success if task.result.verified else Qgis.Warning,
                       buttons)
         elif task.outcome == UNVERIFIED:
@@ -102,15 +126,24 @@ class AutoGeoreference:
             else:
                 self.push(tr("The output '{}' could not be loaded.").format(layer.source()), Qgis.Warning)
 
+    def close_progress(self, task):
+        item = getattr(task, "bar_item", None)
+        if item is not None:
+            item.disconnect_update()
+            self.iface.messageBar().popWidget(item)
+            task.bar_item = None
+
     @staticmethod
     def success_text(job, result):
+        """One line: what happened and how good it is; the rest is behind 'Details'."""
         v = result.verification
         if result.verified:
-            bound = "" if v.error_bound_px is None else tr(", error within {:.2f} px").format(v.error_bound_px)
-            return tr("'{}' is georeferenced, {} GCPs, and verified by an independent check: {} of {} sites "
-                      "agree{}.").format(job.target_name, result.stats.n_gcps, v.n_agree, v.n_sites, bound)
-        return tr("'{}' is georeferenced but NOT VERIFIED ({}); check it before use.").format(
-            job.target_name, "; ".join(v.reasons) if v is not None else tr("not checked"))
+            bound = "" if v.error_bound_px is None else tr(" (error within {:.1f} px)").format(v.error_bound_px)
+            return tr("'{}' is georeferenced and verified{}.").format(job.target_name, bound)
+        return tr("'{}' is georeferenced but NOT VERIFIED; check it before use.").format(job.target_name)
+
+    def show_details(self, job, result):
+        QMessageBox.information(self.iface.mainWindow(), TITLE, details_text(job, result))
 
     def report_button(self, written):
         html = written.get("html")
@@ -145,3 +178,20 @@ class AutoGeoreference:
             task.done = None
             task.cancel()
 
+
+
+def details_text(job, result) -> str:
+    """What a user may want after the one line: the check's figures, the method, the GCPs, where the
+    target was found and how long it took."""
+    v = result.verification
+    lines = [tr("'{}' onto '{}'").format(job.target_name, job.reference.name())]
+    if v is not None:
+        bound = "–" if v.error_bound_px is None else f"{v.error_bound_px:.2f}"
+        lines.append(tr("Independent check: {}; {} of {} sites agree; error bound {} px (tolerance {:g} px)").format(
+            tr(v.verdict), v.n_agree, v.n_sites, bound, v.tolerance_px))
+        lines += [f"  – {reason}" for reason in v.reasons]
+    lines.append(tr("Method: {}; {} GCPs; transformation: {}").format(result.method, result.stats.n_gcps,
+                                                                       result.options.get("model") or "–"))
+    lines += [f"  – {note}" for note in result.notes]
+    lines.append(tr("Time: {:.1f} s").format(result.timings.total))
+    return "\n".join(lines)

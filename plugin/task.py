@@ -21,9 +21,9 @@ def tr(text: str) -> str:
 
 
 class RegisterTask(QgsTask):
-    """Registers ``target`` (a raster file) onto ``reference`` (what the core reads: a file, a tile or
-    map service source; or a :class:`hamta.processing.reference.Rendering` of a layer, written here
-    first) and writes the outputs into ``folder``.
+    """Registers ``target`` (a raster file) onto ``reference`` (a reference the core reads, see
+    :mod:`hamta.core.reference`; or a :class:`hamta.processing.reference.Rendering` of a layer, written
+    here first) and writes the outputs into ``folder``.
 
     After ``finished``: ``outcome`` is one of :data:`WRITTEN` (the outputs: verified, or unverified and
     kept), :data:`UNVERIFIED` (not verified: only the report was written, ``error`` says why),
@@ -48,9 +48,11 @@ class RegisterTask(QgsTask):
         from ..core.outputs import OutputPaths
 
         try:
-            if not isinstance(self.reference, str):
+            if hasattr(self.reference, "write"):  # a Rendering of a layer QGIS reads
+                from ..core.reference import RasterReference
+
                 self._progress(0.0, "reading the reference layer")
-                self.reference = self.reference.write(self._block_feedback())
+                self.reference = RasterReference(self.reference.write(self._block_feedback()))
             self.result, self.written = run(self.target, self.reference, OutputPaths.in_folder(self.folder),
                                             options=self.options, accept_unverified=self.accept_unverified,
                                             progress=self._progress, is_canceled=self.isCanceled)

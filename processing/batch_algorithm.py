@@ -20,7 +20,6 @@ from qgis.PyQt.QtCore import QCoreApplication
 
 from ..core import RegisterOptions
 from ..core.auto import AUTO
-from ..core.basemap.services import parse_service
 from ..core.batch import read_jobs, run_batch
 from ..core.batch.jobs import jobs_for_targets
 from ..core.batch.runner import unauthenticated_warning
@@ -28,6 +27,7 @@ from ..core.batch.table import write_results
 from ..core.batch.task import BatchSettings
 from ..core.errors import HamtaError
 from ..core.methods import all_methods
+from ..core.reference import ServiceReference, resolve_reference
 from .help import help_url
 from .mapping import register_settings
 from .options import advanced, option_parameters, option_values
@@ -115,7 +115,8 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         reference = self.parameterAsRasterLayer(parameters, self.REFERENCE, context)
         if not layers or reference is None:
             raise QgsProcessingException(self.tr("Choose target rasters and a reference raster, or a job list."))
-        if reference.providerType() != "gdal" and parse_service(reference.source()) is None:
+        if reference.providerType() != "gdal" and not isinstance(resolve_reference(reference.source()),
+                                                                 ServiceReference):
             raise QgsProcessingException(self.tr(
                 "The reference layer '{}' ({}) cannot be read by every pair of a batch: use a raster file, an XYZ or "
                 "WMS layer, or save the layer's area as a GeoTIFF first.").format(reference.name(),

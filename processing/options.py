@@ -41,6 +41,11 @@ def enum_parameter(name, description, choice, default):
     return QgsProcessingParameterEnum(name, description, options=labels, defaultValue=index, optional=index is None)
 
 
+EXTENT_HELP = ("where to look for a target without usable georeferencing: an extent as QGIS writes it, "
+               "xmin,xmax,ymin,ymax [EPSG:code] (with qgis_process, e.g. EXTENT='1180000,1200000,7050000,7065000 "
+               "[EPSG:3857]'), or drawn on the canvas")
+
+
 def option_parameters(defaults: RegisterOptions, output_defaults: OutputOptions = OutputOptions(), *,
                       bands: bool = True):
     """One parameter per option (basic first, then advanced, each in declaration order), with
@@ -52,7 +57,8 @@ def option_parameters(defaults: RegisterOptions, output_defaults: OutputOptions 
             p = _parameter(f, spec, option_type(cls, f.name), getattr(values, f.name), bands)
             optional = bool(p.flags() & QgsProcessingParameterDefinition.FlagOptional)
             empty = QCoreApplication.translate("RegisterAlgorithm", "empty")
-            text = tr(spec.help) + (f" ({empty}: {tr(spec.unset)})" if spec.unset and optional else "")
+            text = tr(EXTENT_HELP if spec.kind == "extent" else spec.help)
+            text += f" ({empty}: {tr(spec.unset)})" if spec.unset and optional else ""
             p.setHelp(text[:1].upper() + text[1:])  # the CLI's help, as a sentence
             made.append(p if not spec.advanced else advanced(p))
     return sorted(made, key=lambda p: bool(p.flags() & QgsProcessingParameterDefinition.FlagAdvanced))

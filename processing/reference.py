@@ -23,25 +23,29 @@ from qgis.core import (
 )
 
 from ..core.basemap.fetch import default_cache
-from ..core.basemap.services import parse_service
 from ..core.errors import InputError
 from ..core.extent import parse_extent
 from ..core.io.raster import open_raster
+from ..core.reference import RasterReference, ServiceReference, resolve_reference
 
 
-def reference_source(layer, extent, target: str, max_pixels: int) -> str:
-    """What :func:`hamta.core.run` takes as the reference for ``layer`` (``extent``: the search area
-    text, or None); a layer without a GDAL equivalent is rendered here (see :func:`prepare_reference`)."""
+def reference_source(layer, extent, target: str, max_pixels: int):
+    """The reference :func:`hamta.core.run` takes for ``layer`` (:mod:`hamta.core.reference`; ``extent``:
+    the search area text, or None); a layer without a GDAL equivalent is rendered here (see
+    :func:`prepare_reference`)."""
     prepared = prepare_reference(layer, extent, target, max_pixels)
-    return prepared if isinstance(prepared, str) else prepared.write()
+    return prepared if not isinstance(prepared, Rendering) else RasterReference(prepared.write())
 
 
 def prepare_reference(layer, extent, target: str, max_pixels: int):
-    """The reference text for ``layer``, or a :class:`Rendering` to write in a worker thread (made here,
-    in the layer's thread: it holds a clone of the layer's provider)."""
+    """The resolved reference for ``layer``, or a :class:`Rendering` to write in a worker thread (made
+    here, in the layer's thread: it holds a clone of the layer's provider)."""
     provider, source = layer.providerType(), layer.source()
-    if provider == "gdal" or (provider == "wms" and parse_service(source) is not None):
-        return source
+    if provider == "gdal":
+        return RasterReference(source)
+    resolved = resolve_reference(source) if provider == "wms" else None
+    if isinstance(resolved, ServiceReference):
+        return resolved
     return Rendering(layer, _area(layer, extent, target), max_pixels)
 
 

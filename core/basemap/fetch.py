@@ -104,7 +104,7 @@ class Fetcher:
                     bodies[pending.pop(future)] = future.result()
                     done += 1
                 if monitor is not None:
-                    monitor.report(done / max(1, len(urls)), "fetching the reference")
+                    monitor.report(done / max(1, len(urls)), f"fetching tiles {done}/{len(urls)}")
         except BaseException:
             stop.set()  # requests in flight end at their time-out; nobody waits for them
             raise

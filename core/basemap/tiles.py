@@ -23,6 +23,10 @@ from .services import TileService
 Bounds = Tuple[float, float, float, float]  # xmin, ymin, xmax, ymax in the service's grid CRS
 
 
+class NoTiles(ServiceError):
+    """Every tile of an area is missing or transparent (outside the layer, or beyond its finest zoom)."""
+
+
 @dataclass(frozen=True)
 class TileRange:
     """Tiles ``x0..x1``, ``y0..y1`` (inclusive) of zoom ``z``."""
@@ -64,7 +68,7 @@ def fetch_area(service: TileService, tiles: TileRange, fetcher: Fetcher, folder:
             for x in range(tiles.x0, tiles.x1 + 1)]
     bodies = fetcher.get_many(urls, monitor, valid=_image_like)
     if all(b is None for b in bodies):
-        raise ServiceError(f"The map service at {host(urls[0])} has no data in the search area: each of the "
+        raise NoTiles(f"The map service at {host(urls[0])} has no data in the search area: each of the "
                            f"{len(urls)} tiles of zoom {tiles.z} was answered 'HTTP 404 Not Found', 'HTTP 204 No "
                            "Content' or empty.")
     n = service.tile_px
@@ -75,7 +79,7 @@ def fetch_area(service: TileService, tiles: TileRange, fetcher: Fetcher, folder:
             r, c = divmod(i, width)
             mosaic[:, r * n:(r + 1) * n, c * n:(c + 1) * n] = _decode(body, n, url, fetcher)
     if not mosaic[3].any():
-        raise ServiceError(f"The map service at {host(urls[0])} has no data in the search area: the {len(urls)} "
+        raise NoTiles(f"The map service at {host(urls[0])} has no data in the search area: the {len(urls)} "
                            f"tiles of zoom {tiles.z} are fully transparent.")
     _write(path, mosaic, service, tiles)
     return path

@@ -20,11 +20,11 @@ import sqlite3
 from dataclasses import dataclass
 from typing import List, Optional
 
-from ..basemap.services import parse_service
 from ..errors import InputError
 from ..extent import parse_extent
 from ..methods import get_method
 from ..options import MODEL
+from ..reference import ServiceReference, resolve_reference
 
 RASTER_EXTENSIONS = (".tif", ".tiff", ".vrt", ".jp2", ".img", ".jpg", ".jpeg", ".png", ".nc", ".hdf", ".h5")
 
@@ -186,7 +186,8 @@ def _path(value, base: str) -> Optional[str]:
 def _reference(value, base: str) -> Optional[str]:
     """A reference as a path relative to ``base``, or as written when it is a map service or a GDAL string."""
     value = (value or "").strip() if isinstance(value, str) else None
-    if value and (parse_service(value) is not None or value.startswith("/vsi") or re.match(r"[A-Za-z]\w+:", value)):
+    if value and (isinstance(resolve_reference(value), ServiceReference) or value.startswith("/vsi")
+                  or re.match(r"[A-Za-z]\w+:", value)):
         return value
     return _path(value, base)
 

@@ -21,10 +21,11 @@ from dataclasses import dataclass, replace
 from typing import Optional
 
 from ..basemap.redact import redact
-from ..basemap.services import parse_service, redact_source
+from ..basemap.services import redact_source
 from ..coords import raster_outline
 from ..errors import HamtaError, MethodCrashed, UnverifiedResult
 from ..options import OutputOptions, RegisterOptions
+from ..reference import ServiceReference, resolve_reference
 from .jobs import Job
 
 
@@ -108,8 +109,8 @@ def _same_reference(described: dict, reference: str) -> bool:
     recognised by its digest) is ``reference``."""
     service = described.get("service")
     if service:
-        parsed = parse_service(reference)
-        return parsed is not None and parsed.id == service.get("id")
+        parsed = resolve_reference(reference)
+        return isinstance(parsed, ServiceReference) and parsed.service.id == service.get("id")
     return described["path"] in (reference, redact(reference)) or os.path.abspath(described["path"]) == reference
 
 

@@ -161,7 +161,7 @@ LAYERS = (
     ("core.refine", "core.verify"),
     ("core.local", "core.methods", "core.auto", "core.result", "core.advice"),
     ("core.pipeline", "core.mapping", "core.outputs"),
-    ("core.remote",),
+    ("core.remote", "core.reference"),
     ("core.runner",),
     ("core.batch",),
     ("core",),

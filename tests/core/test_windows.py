@@ -56,7 +56,11 @@ def test_held_windows_are_the_windows_gdal_reads(raster_writer, kind):
     with WindowReader(info, bands) as held, WindowReader(info, bands, hold_pixels=0) as direct:
         for window in _windows(info):
             a, b = held.read(window), direct.read(window)
-            assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1]), window
+            assert np.array_equal(a[1], b[1]), window
+            # RGB luminance is a weighted sum through BLAS, whose kernels order it by the array's shape (an
+            # AVX-512 kernel and an older one differ in the last float32 place): the same pixels agree to
+            # within a few units of float32 rounding at 255 (3e-5 each), not bit for bit.
+            np.testing.assert_allclose(a[0], b[0], rtol=0, atol=1e-4, err_msg=str(window))
 
 
 def test_a_run_describes_each_file_once_and_reads_it_through_one_dataset(raster_writer, monkeypatch):

@@ -74,11 +74,14 @@ def session(qgis_app, xyz_source, crop, tmp_path, monkeypatch):
     sip.delete(iface.window)  # with the dialog, canvas and message bar, now rather than at exit
 
 
-def wait_for_tasks(action, timeout=60.0):
+def wait_for_tasks(action, timeout=60.0, seen=None):
+    """Until ``action``'s tasks end; ``seen`` (a set) gets the message bar's texts meanwhile."""
     end = time.monotonic() + timeout
     while action.tasks:
         assert time.monotonic() < end, "the task did not end in time"
         QgsApplication.processEvents()
+        if seen is not None:
+            seen.update(item.text() for item in action.iface.messageBar().items())
         time.sleep(0.01)
     QgsApplication.processEvents()
 
@@ -101,7 +104,10 @@ def test_one_click_georeferences_the_selected_raster_on_the_basemap(session, mon
 
     dialog.run_button.click()
     assert not dialog.isVisible() and len(plugin.autogeoref.tasks) == 1
-    wait_for_tasks(plugin.autogeoref)  # about 8 s here
+    seen = set()
+    wait_for_tasks(plugin.autogeoref, seen=seen)  # about 8 s here
+    assert any(t.startswith("Auto-georeference 'scan': fetching tiles ") for t in seen), seen
+    assert len({t for t in seen if t.startswith("Auto-georeference 'scan': ")}) >= 4, seen  # stages as they go
 
     layers = {layer.source(): layer for layer in QgsProject.instance().mapLayers().values()}
     raster, gcps = layers[os.path.join(folder, "registered.tif")], layers[os.path.join(folder, "gcps.gpkg") +
@@ -114,13 +120,17 @@ def test_one_click_georeferences_the_selected_raster_on_the_basemap(session, mon
     with rasterio.open(raster.source()) as ds:
         assert ds.crs.to_epsg() == 3857
     [(level, text, buttons)] = messages(iface)
-    assert level == Qgis.Success and "verified" in text, text
-    assert buttons == ["Open report", "Open the GCPs in the Georeferencer"]
+    assert level == Qgis.Success and text.startswith("'scan' is georeferenced and verified (error within "), text
+    assert buttons == ["Details", "Open report", "Open the GCPs in the Georeferencer"]
 
-    opened = []
+    opened, shown = [], []
     monkeypatch.setattr("hamta.plugin.action.QDesktopServices.openUrl", lambda url: opened.append(url.toLocalFile()))
+    monkeypatch.setattr("hamta.plugin.action.QMessageBox.information", lambda parent, title, text: shown.append(text))
     item = iface.bar.items()[0]
-    [report_button, georef_button] = item.findChildren(QPushButton)
+    [details_button, report_button, georef_button] = item.findChildren(QPushButton)
+    details_button.click()
+    [details] = shown
+    assert "Independent check: verified" in details and "sites agree" in details and "searched" in details, details
     report_button.click()
     assert opened == [os.path.join(folder, "report.html")]
     georef_button.click()

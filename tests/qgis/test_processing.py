@@ -331,3 +331,9 @@ def test_a_method_module_added_shows_as_an_algorithm_with_its_parameters(provide
 
         registry._REGISTRY.pop(new_method_module, None)
         provider.refreshAlgorithms()
+
+
+def test_the_search_area_s_help_gives_the_order_qgis_accepts(provider):
+    """qgis_process refuses 'xmin,ymin,xmax,ymax' for an extent parameter; its help shows QGIS's own form."""
+    extent = provider.algorithm("registerauto").parameterDefinition("EXTENT")
+    assert "xmin,xmax,ymin,ymax [EPSG:code]" in extent.help() and "xmin,ymin,xmax,ymax" not in extent.help()

@@ -1,5 +1,6 @@
 """The README's headless block, run as printed: a checkout, ``make demo``'s sample, a fresh home
 with no QGIS profile yet, and a bare environment (no virtual environment, no display)."""
+import json
 import pathlib
 import re
 import shutil
@@ -11,9 +12,12 @@ REPO = pathlib.Path(__file__).resolve().parents[2]
 MARKER = "<!-- headless: tests/qgis/test_readme.py runs this block as printed -->"
 
 
-def headless_block() -> str:
+BASEMAP_MARKER = "<!-- headless basemap: tests/qgis/test_readme.py runs this block as printed, after the one above -->"
+
+
+def headless_block(marker: str = MARKER) -> str:
     text = (REPO / "README.md").read_text()
-    return re.search(re.escape(MARKER) + r"\n```\n(.*?)```", text, re.S).group(1)
+    return re.search(re.escape(marker) + r"\n```\n(.*?)```", text, re.S).group(1)
 
 
 def checkout(folder: pathlib.Path) -> pathlib.Path:
@@ -47,3 +51,10 @@ def test_the_headless_block_runs_as_printed(tmp_path):
     for name in ("registered.tif", "gcps.gpkg", "report.json", "report.html"):
         assert (repo / "qgis-output" / name).is_file(), name
     assert (home / ".local/share/QGIS/QGIS3/profiles/default/python/plugins/hamta/metadata.txt").is_file()
+
+    proc = subprocess.run(["bash", "-e", "-c", headless_block(BASEMAP_MARKER)], cwd=repo, env=env, capture_output=True,
+                          text=True, timeout=300)
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    report = json.loads((repo / "qgis-output" / "on-tiles.json").read_text())
+    assert report["quality"]["verdict"] == "verified" and (repo / "qgis-output" / "on-tiles.tif").is_file()
+    assert report["reference"]["service"]["kind"] == "xyz"

@@ -1,0 +1,112 @@
+"""Locating a small target in a large search area (:mod:`hamta.core.matching.locate`), and a layer's
+finest zoom found when a tile template does not say it."""
+import math
+
+import cv2
+import numpy as np
+import pytest
+
+from hamta.bench.synthetic import make_landscape
+from hamta.bench.tileserver import TileServer
+from hamta.core.basemap.fetch import Fetcher
+from hamta.core.basemap.services import parse_service
+from hamta.core.basemap.tiles import NoTiles
+from hamta.core.matching.locate import features, locate
+from hamta.core.remote import _Reader
+
+
+def _grey(bands):
+    """A (3, H, W) scene as grey float32."""
+    return cv2.cvtColor(np.ascontiguousarray(np.moveaxis(bands, 0, 2)), cv2.COLOR_RGB2GRAY).astype(np.float32)
+
+
+def _turned_window(area, centre, side, scale, angle_deg):
+    """A ``side`` px square target showing ``area`` around ``centre`` turned by ``angle_deg`` and magnified
+    ``scale`` times; the 2 x 3 matrix mapping target px to area px (corner convention)."""
+    a = math.radians(angle_deg)
+    lin = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]) / scale
+    off = np.asarray(centre, float) - lin @ np.array([side / 2.0, side / 2.0])
+    cv = np.column_stack([lin, off + lin @ np.array([0.5, 0.5]) - 0.5])
+    image = cv2.warpAffine(area, cv, (side, side), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+    return image, np.column_stack([lin, off])
+
+
+@pytest.mark.parametrize("angle, scale", [(0.0, 1.0), (37.0, 2.0), (-150.0, 0.7)])
+def test_a_turned_rescaled_target_is_found_in_an_area_16_times_its_size(angle, scale):
+    area = _grey(make_landscape((1600, 1600), seed=3))
+    side = 400
+    centre = (1100.0, 450.0)
+    target, truth = _turned_window(area, centre, side, scale, angle)
+    found = locate(*features(target, np.ones(target.shape, bool)), *features(area, np.ones(area.shape, bool)),
+                   target.shape)
+    assert found, "no candidate"
+    best = found[0]
+    corners = np.array([[0, 0], [side, 0], [side, side], [0, side]], float)
+    error = np.hypot(*(best.apply(corners) - (corners @ truth[:, :2].T + truth[:, 2])).T)
+    assert error.max() < 2.0, (error, best)  # area px: a candidate is where to look, not yet the result
+    assert best.inliers >= 20 and abs(best.scale - 1 / scale) < 0.02 / scale
+
+
+def test_unrelated_images_give_no_strong_candidate():
+    area = _grey(make_landscape((1200, 1200), seed=3))
+    other = _grey(make_landscape((400, 400), seed=11))
+    found = locate(*features(other, np.ones(other.shape, bool)), *features(area, np.ones(area.shape, bool)),
+                   other.shape)
+    assert all(c.inliers < 6 for c in found), found  # remote.MIN_INLIERS: none would be registered
+
+
+def test_features_of_a_large_area_are_detected_block_by_block_like_the_whole():
+    """Blocks with a margin find the keypoints a whole-image detection finds (the same scale space inside)."""
+    from scipy.spatial import cKDTree
+
+    area = _grey(make_landscape((1100, 1000), seed=5))
+    valid = np.ones(area.shape, bool)
+    whole, _ = features(area, valid, per_block=100_000, block=4096)
+    blocks, _ = features(area, valid, per_block=100_000, block=512)
+    inner = (whole.xy > 60).all(axis=1) & (whole.xy < np.array([940, 1040])).all(axis=1)
+    distance, _ = cKDTree(blocks.xy).query(whole.xy[inner])
+    assert (distance < 0.5).mean() > 0.9, (distance < 0.5).mean()
+
+
+def test_a_layer_s_finest_zoom_is_found_below_the_zoom_asked(landsat, tmp_path):
+    """A plain template does not say its finest zoom: an area whose tiles are all missing at zoom 14 is
+    read at 12, the server's finest, and later reads stop there; an area outside the layer stays an error."""
+    with TileServer(landsat, zmax=12) as server:
+        service = parse_service(server.xyz())
+        reader = _Reader(service, Fetcher(cache=str(tmp_path / "cache")))
+        bounds = (-8.68e6, 2.80e6, -8.66e6, 2.82e6)  # inside the Landsat sample, EPSG:3857
+        reader.read(bounds, 14, None)
+        reader.read(bounds, 13, None)
+        assert reader.zooms == [12, 12]
+        with pytest.raises(NoTiles, match="no data"):
+            reader.read((1.0e6, 1.0e6, 1.02e6, 1.02e6), 11, None)
+
+
+def test_a_place_found_stands_in_for_the_target_s_georeferencing(landsat, tmp_path):
+    """``register(placed=...)``: a target without georeferencing, placed 6 px and 1 degree off where it is,
+    is registered from there like a georeferenced one (the shift first) and keeps its own description."""
+    import rasterio
+    from affine import Affine
+
+    from hamta.bench.goals.basemap import rotated_target
+    from hamta.core.coords import map_to_pixel
+    from hamta.core.pipeline import register
+
+    case = rotated_target(landsat, str(tmp_path / "target.tif"), (300.0, 300.0), (320, 420), 2.0, 15.0)
+    with rasterio.open(landsat) as ds:
+        transform, crs = ds.transform, ds.crs
+    from pyproj import Transformer
+
+    back = Transformer.from_crs("EPSG:3857", crs, always_xy=True)
+    corners = np.array([[0.0, 0.0], [420.0, 0.0], [0.0, 320.0]])
+    true_map = np.column_stack(back.transform(*case.truth(corners).T))
+    (x0, y0), (x1, y1), (x2, y2) = true_map
+    truth = Affine((x1 - x0) / 420, (x2 - x0) / 320, x0, (y1 - y0) / 420, (y2 - y0) / 320, y0)
+    off = Affine.translation(6 * transform.a, -4 * transform.a) * Affine.rotation(1.0, pivot=(x0, y0))
+    result = register(case.path, landsat, placed=off * truth)
+    assert result.verified, result.notes
+    grid = case.grid()
+    expected = map_to_pixel(transform, np.column_stack(back.transform(*case.truth(grid).T)))
+    assert np.abs(result.model.apply(grid) - expected).max() < 0.5
+    assert not result.target.georeferenced and result.plan.mode == "search"
+    assert result.auto.attempts[0].method == "shift"
