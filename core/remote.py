@@ -5,13 +5,15 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
 - for a georeferenced target (its georeferencing used): its footprint plus a margin
   (``FOOTPRINT_MARGIN``), at the zoom whose pixels match the target's;
 - otherwise the search area (``RegisterOptions.extent``), searched coarse to fine: read at the zoom
-  where its longer side is about 2048 px, then 4096 px (``AREA_SIDES``), the target is located by
+  where its longer side is about 1024, 2048, then 4096 px (``AREA_SIDES``), the target is located by
   features voting for a pose (:mod:`hamta.core.matching.locate`: any rotation, scale and place); each
   of the few places where most features agree has its footprint (plus ``LOCATED_MARGIN``) read at the
   zoom nearest the target's own pixels, and the target is registered there with that place as its
-  prior, as if it had been georeferenced there. Each such registration is verified like any other;
-  the first verified one is the result (else the best unverified one). A place found is only where
-  to look, never a result.
+  prior, as if it had been georeferenced there. At the first zoom, before the places with few agreeing
+  features, the whole area is registered once as well (the target assumed to cover ``AREA_SHARE`` of
+  it). Each registration is verified like any other; the first verified one is the result (else the
+  best unverified one). A place found is only where to look, never a result; one that puts the target
+  outside the search area is not taken. The run's time budget bounds the whole search.
 
 Each area becomes a local GeoTIFF in the service's CRS (EPSG:3857 for XYZ layers) under the cache
 folder (a private temporary folder without one), so outputs are in the service's CRS and a rerun
@@ -153,7 +155,7 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
         left = max(0.0, deadline - time.monotonic())
         return dataclasses.replace(options, auto_budget_s=min(left, PLACE_BUDGET_S))
 
-    best, places, searched = None, [], []
+    best, places, searched, whole_tried = None, [], [], False
     for i, z in enumerate(zooms):
         span = monitor.span(i / len(zooms), (i + 1) / len(zooms))
         path = reader.read(bounds, z, span.span(0.0, 0.3))
@@ -176,28 +178,33 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
             placed = area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
             if not _seen(placed, info, places) and len(places) < MAX_PLACES:
                 places.append(placed)
-                todo.append(placed)
-        for j, placed in enumerate(todo):
-            step = span.span(0.4 + 0.6 * j / len(todo), 0.4 + 0.6 * (j + 1) / len(todo))
+                todo.append((c.inliers, placed))
+        strong = [p for n, p in todo if n >= STRONG_INLIERS]
+        weak = [p for n, p in todo if n < STRONG_INLIERS]
+        for j, placed in enumerate(strong + [None] + weak):
+            step = span.span(0.4 + 0.6 * j / (len(todo) + 1), 0.4 + 0.6 * (j + 1) / (len(todo) + 1))
             if time.monotonic() > deadline:
                 notes.append(f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried")
                 break
-            result, z_fine = _register_placed(info, reader, placed, budgeted(), register_onto, step, notes)
-            if result is None:
+            if placed is None:  # after the strong places of the first zoom, before the weak ones
+                if whole_tried:
+                    continue
+                whole_tried = True
+                found_here = _register_whole_area(info, reader, bounds, z, budgeted(), register_onto, step, notes)
+            else:
+                found_here = _register_placed(info, reader, placed, budgeted(), register_onto, step, notes)
+                if found_here[0] is None:
+                    continue
+                if not _overlaps(found_here[0], info, bounds):
+                    notes.append(f"a place registered at zoom {found_here[1]} put the target outside the search "
+                                 "area; it was not taken")
+                    continue
+            if found_here is None:
                 continue
-            if not _overlaps(result, info, bounds):
-                notes.append(f"a place registered at zoom {z_fine} put the target outside the search area; it was "
-                             "not taken")
-                continue
-            if best is None or result_rank(result) > result_rank(best[0]):
-                best = result, z_fine
-            if result.verified:
+            if best is None or result_rank(found_here[0]) > result_rank(best[0]):
+                best = found_here
+            if found_here[0].verified:
                 return best
-    if (best is None or not best[0].verified) and time.monotonic() < deadline:
-        whole = _register_whole_area(info, reader, bounds, searched[0], budgeted(), register_onto,
-                                     monitor.span(0.95, 1.0), notes)
-        if whole is not None and (best is None or result_rank(whole[0]) > result_rank(best[0])):
-            best = whole
     if best is None:
         raise InsufficientMatchesError(
             f"The target raster '{info.path}' was not found in the search area ({_size_text(bounds, service)}, "
@@ -214,6 +221,8 @@ MIN_INLIERS = 4  # agreeing features for a place to be registered there: the lea
 # told from chance with, since the independent check of the registration decides, not the count
 CANDIDATES = 3  # places registered per zoom, most agreeing features first
 MAX_PLACES = 4  # places registered in all
+STRONG_INLIERS = 8  # places with fewer agreeing features are registered after the whole area (at the first zoom
+# searched: areas a few times the target's size, whose features are too few to vote, are found that way faster)
 AREA_SHARE = 7  # the share of the area's pixels a target is assumed to cover when the whole area is registered
 PLACE_BUDGET_S = 8.0  # s of 'auto' at each place (the run's budget bounds the whole search): at a wrong place
 # every method fails, and the fast ones find a right place (median 4 s on the basemap-real family)
