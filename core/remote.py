@@ -35,7 +35,7 @@ from .basemap.tiles import NoTiles, fetch_area, tile_range
 from .coords import map_to_pixel, pixel_to_map, raster_outline
 from .errors import InputError, InsufficientMatchesError
 from .extent import bounds_in, parse_extent
-from .io.raster import open_raster, read_image
+from .io.raster import open_raster, read_image, resolve_bands
 from .io.working import footprint
 from .matching.locate import features, locate
 from .options import RegisterOptions
@@ -129,7 +129,8 @@ class _Reader:
             try:
                 path = fetch_area(self.service, tiles, self.fetcher, self.folder, monitor)
             except NoTiles:
-                self.empty_from = self.empty_from or z
+                if self.empty_from is None:
+                    self.empty_from = z
                 if z <= self.service.zmin or z <= self.empty_from - FINER_STEPS:
                     raise
                 self.finest = z = z - 1
@@ -190,20 +191,15 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
                 if whole_tried:
                     continue
                 whole_tried = True
-                found_here = _register_whole_area(info, reader, bounds, z, budgeted(), register_onto, step, notes)
+                result, z_fine = _register_whole_area(info, reader, bounds, z, budgeted(), register_onto, step, notes)
             else:
-                found_here = _register_placed(info, reader, placed, budgeted(), register_onto, step, notes)
-                if found_here[0] is None:
-                    continue
-                if not _overlaps(found_here[0], info, bounds):
-                    notes.append(f"a place registered at zoom {found_here[1]} put the target outside the search "
-                                 "area; it was not taken")
-                    continue
-            if found_here is None:
+                result, z_fine = _register_placed(info, reader, placed, bounds, budgeted(), register_onto, step,
+                                                  notes)
+            if result is None:
                 continue
-            if best is None or result_rank(found_here[0]) > result_rank(best[0]):
-                best = found_here
-            if found_here[0].verified:
+            if best is None or result_rank(result) > result_rank(best[0]):
+                best = result, z_fine
+            if result.verified:
                 return best
     if best is None:
         raise InsufficientMatchesError(
@@ -235,8 +231,6 @@ AREA_SIDES = (1024, 2048, 4096)  # px: the search area's longer side at each zoo
 
 def _target_features(info, options: RegisterOptions):
     """The target's locating features: (keypoints, descriptors, working shape) and working px per target px."""
-    from .io.raster import resolve_bands
-
     per_px = min(1.0, TARGET_SIDE / max(info.width, info.height))
     shape = (max(1, round(info.height * per_px)), max(1, round(info.width * per_px)))
     image, valid = read_image(info, resolve_bands(info, options.target_band), None, shape)
@@ -263,20 +257,20 @@ def _register_whole_area(info, reader: _Reader, bounds, z: int, options: Registe
     covered :data:`AREA_SHARE` of it (the methods of 'auto' match across a factor 2 of scale, so a target
     covering 1/25 to 1/2 of the area), then again at the zoom nearest its pixels where that registration
     put it. Areas a few times the target's size, where the area's features are too few to vote, are
-    found this way; (result, zoom) or None."""
+    found this way; (result, zoom), or (None, zoom) when it gave nothing in the area."""
     path = reader.read(bounds, z, monitor.span(0.0, 0.1))
     try:
         coarse = register_onto(path, monitor.span(0.1, 0.5), within=bounds, options=options,
                                target_pixels=_guess_pixels(bounds, reader.service, z))
     except InsufficientMatchesError as exc:
         notes.append(f"the target registered onto the whole area at zoom {z} gave no model ({exc})")
-        return None
+        return None, z
     if not _overlaps(coarse, info, bounds):
-        return None
+        return None, z
     notes.append(f"the target registered onto the whole area at zoom {z}: {coarse.verification.verdict}")
-    fine, z_fine = _register_placed(info, reader, _placed_from(coarse, info), options, register_onto,
+    fine, z_fine = _register_placed(info, reader, _placed_from(coarse, info), bounds, options, register_onto,
                                     monitor.span(0.5, 1.0), notes)
-    if fine is not None and _overlaps(fine, info, bounds) and result_rank(fine) > result_rank(coarse):
+    if fine is not None and result_rank(fine) > result_rank(coarse):
         return fine, z_fine
     return coarse, z
 
@@ -312,12 +306,14 @@ def _seen(placed, info, places) -> bool:
     return any(math.hypot(x - px, y - py) < 0.25 * size for px, py in (p * centre for p in places))
 
 
-def _register_placed(info, reader: _Reader, placed, options: RegisterOptions, register_onto, monitor: Monitor, notes):
+def _register_placed(info, reader: _Reader, placed, bounds, options: RegisterOptions, register_onto, monitor: Monitor,
+                     notes):
     """Register the target onto its footprint through ``placed`` (target px -> map), read at the zoom
-    nearest its pixels; (result, zoom), or (None, zoom) when no method found a model there."""
+    nearest its pixels; (result, zoom), or (None, zoom) when no method found a model there or the model
+    puts the target outside the search area ``bounds``."""
     outline = pixel_to_map(placed, raster_outline(info.width, info.height, 9, ends=True))
     around = _padded((*outline.min(axis=0), *outline.max(axis=0)), LOCATED_MARGIN)
-    pixel = math.sqrt(abs(placed.a * placed.e - placed.b * placed.d))
+    pixel = math.sqrt(abs(placed.determinant))
     z = _zoom_in_budget(reader.service, around, pixel, options.max_working_pixels)
     path = reader.read(around, z, monitor.span(0.0, 0.2))
     z = reader.zooms[-1]
@@ -325,6 +321,9 @@ def _register_placed(info, reader: _Reader, placed, options: RegisterOptions, re
         result = register_onto(path, monitor.span(0.2, 1.0), options=options, placed=placed)
     except InsufficientMatchesError as exc:
         notes.append(f"a place registered at zoom {z} gave no model ({exc})")
+        return None, z
+    if not _overlaps(result, info, bounds):
+        notes.append(f"a place registered at zoom {z} put the target outside the search area; it was not taken")
         return None, z
     return result, z
 

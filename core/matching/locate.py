@@ -161,13 +161,13 @@ def _clusters(pose: np.ndarray, size: float):
         keys.append(b)
         owners.append(np.arange(len(pose)))
     keys, owners = np.concatenate(keys), np.concatenate(owners)
-    unique, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
-    inverse = inverse.ravel()
-    order = np.argsort(-counts, kind="stable")
-    for b in order:
+    _, inverse, counts = np.unique(keys, axis=0, return_inverse=True, return_counts=True)
+    by_bin = owners[np.argsort(inverse.ravel(), kind="stable")]  # the votes grouped by bin, bins in order
+    starts = np.concatenate([[0], np.cumsum(counts)])
+    for b in np.argsort(-counts, kind="stable"):
         if counts[b] < MIN_VOTES:
             break
-        yield np.unique(owners[inverse == b]), int(counts[b])
+        yield np.unique(by_bin[starts[b]:starts[b + 1]]), int(counts[b])
 
 
 def _fit(txy, axy, pose, members, rounds: int = 4):
