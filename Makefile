@@ -9,6 +9,9 @@ APT_PACKAGES := qgis python3-qgis qgis-providers python3-numpy python3-scipy pyt
 	python3-pyproj python3-shapely python3-distributed python3-cryptography python3-pytest python3-hypothesis python3-venv python3-setuptools python3-wheel gdal-bin \
 	qttools5-dev-tools pyqt5-dev-tools
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
+# The PyPI-wheels half has the 'learned' extra (its tests run there): torch's CPU build where this machine's
+# pip finds one (PyPI's own torch for Linux is a CUDA build of several GB); TORCH=... chooses another.
+TORCH ?= torch==2.13.0
 
 .PHONY: demo test lint test-wheels test-debian sysdeps i18n bench fuzz package clean
 
@@ -17,15 +20,16 @@ demo: $(VENV)/.ok
 
 # The two halves run side by side (each keeps about one of two cores busy); each one's output is
 # printed whole when it ends.
-test: $(VENV)/.ok $(QVENV)/.ok
+test: $(VENV)/.learned $(QVENV)/.ok
 	$(MAKE) --no-print-directory lint
 	$(MAKE) --no-print-directory -j2 --output-sync=target test-wheels test-debian
 
 lint: $(VENV)/.ok
 	$(VENV)/bin/ruff check .
 
-# Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL).
-test-wheels: $(VENV)/.ok
+# Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL) and the
+# 'learned' extra.
+test-wheels: $(VENV)/.learned
 	$(VENV)/bin/python -P -m pytest tests/core -q -rs
 
 # Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...);
@@ -59,6 +63,11 @@ $(VENV)/.ok: pyproject.toml
 		{ $(SUDO) apt-get update -q && $(SUDO) env DEBIAN_FRONTEND=noninteractive apt-get install -y -q python3-venv python3-pip; }
 	$(PYTHON) -m venv $(VENV)
 	$(VENV)/bin/pip install -q -e '.[test]'
+	touch $@
+
+$(VENV)/.learned: $(VENV)/.ok
+	$(VENV)/bin/pip install -q '$(TORCH)'
+	$(VENV)/bin/pip install -q -e '.[test,learned]'
 	touch $@
 
 sysdeps:

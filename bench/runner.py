@@ -14,6 +14,7 @@ import json
 import multiprocessing
 import os
 import platform
+import sys
 import time
 from dataclasses import asdict, dataclass
 from typing import Callable, List, Optional, Sequence
@@ -235,7 +236,10 @@ def _run_unit(args):
 
 
 def _pool(jobs: int):
-    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
+    """Workers forked (fast) where the platform can, spawned where it cannot or where this process has run
+    torch (the learned extra): a forked child deadlocks on the thread pools torch left in its parent."""
+    fork = "fork" in multiprocessing.get_all_start_methods() and "torch" not in sys.modules
+    method = "fork" if fork else "spawn"
     return cf.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context(method))
 
 

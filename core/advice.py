@@ -32,6 +32,10 @@ def advice(result) -> List[Advice]:
     if result.plan.mode == "georeferenced":
         tips.append(Advice("target_georef", "ignore", "the target's own georeferencing, the starting point, may be "
                            "too far off"))
+    if result.plan.mode == "search":
+        tips.append(Advice("extent", "xmin,ymin,xmax,ymax", "a search area a few times the target's size, around "
+                           "where it is (in QGIS: the map zoomed closer to it), finds it more often; a target that "
+                           "is mirrored, or whose ground has mostly changed since, may not be found at all"))
     bound = _finite(v.error_bound_px)
     if bound is not None and bound > v.tolerance_px and (_finite(v.error_px) or math.inf) <= v.tolerance_px:
         tips.append(Advice("tolerance_px", math.ceil(bound * 10) / 10, "the estimated error is within the accuracy "

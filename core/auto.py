@@ -4,7 +4,9 @@ For two georeferenced rasters, the offset their georeferencing leaves is measure
 correlation in well-spread windows (:mod:`hamta.core.methods.shift`, AROSICS's ground). Then the
 fast path: OpenCV SIFT registers most same-sensor pairs in about a second, and
 when its result verifies nothing else runs. Otherwise rotation- and scale-invariant multimodal
-matching (``xmodal``), then the structural (CFOG) search for north-up modality gaps, then
+matching (``xmodal``), then, where the optional 'learned' extra is installed, XFeat's learned
+features (images of other years, :mod:`hamta.core.methods.xfeat`), then the structural (CFOG) search
+for north-up modality gaps, then
 SAR-specific matching, and last the slow all-rotation structural search, each checked by the
 same independent verification (:mod:`hamta.core.verify`), until one verifies or the time budget
 is spent. The result says which methods ran, in what order, how long each took and why each was
@@ -54,9 +56,26 @@ CHAIN = (
 SHIFT_STEP = Step("shift", {}, "both rasters georeferenced: the offset left, by correlation in windows", refine="on")
 
 
-def chain_for(plan_mode: str):
-    """The steps for a plan: the shift first when the target's georeferencing placed it."""
-    return ((SHIFT_STEP,) if plan_mode == "georeferenced" else ()) + CHAIN
+def chain_for(plan_mode: str, short: bool = False):
+    """The steps for a plan: the shift first when the target's georeferencing placed it; the learned
+    matcher after ``xmodal`` when its extra is installed (before it, XFeat's answers were kept on 6 of 54
+    real multimodal pairs that ``xmodal`` registers more accurately, and it cost time on every pair).
+    ``short``: up to the north-up structural search only (a
+    basemap search's places, where a wrong place must cost little, and the same work on any machine: the
+    SAR matcher and the all-rotation dense search after it are for gaps a basemap seldom has)."""
+    prior = plan_mode == "georeferenced"
+    return ((SHIFT_STEP,) if prior else ()) + CHAIN[:2] + learned_steps(prior) + CHAIN[2:3 if short else None]
+
+
+def learned_steps(prior: bool) -> tuple:
+    """XFeat when the 'learned' extra is installed: upright where the georeferencing placed the target
+    on the reference, every 45 degrees otherwise."""
+    from .descriptors.xfeat import available
+
+    if not available():
+        return ()
+    return (Step("xfeat", {} if prior else {"max_rotation_deg": 180.0},
+                 "optical images years apart: learned features (the 'learned' extra)", refine="on"),)
 
 
 def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):

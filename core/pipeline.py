@@ -34,7 +34,8 @@ from .verify import VerifyParams, verify
 
 @run_scope()
 def register(target, reference, method: str = AUTO, params=None, options: RegisterOptions = RegisterOptions(),
-             progress=None, is_canceled=None, map_chunks=None, target_pixels=None, placed=None) -> RegistrationResult:
+             progress=None, is_canceled=None, map_chunks=None, target_pixels=None, placed=None,
+             short=False) -> RegistrationResult:
     """Register the ``target`` raster onto the ``reference`` raster, and verify the result.
 
     Parameters
@@ -61,6 +62,9 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
         Where a search already placed the target: its pixels (corner convention) -> the reference's
         map coordinates. It stands in for the target's own georeferencing as the prior (the result
         keeps the target as opened).
+    short : bool
+        'auto' tries its fast steps only (up to ``cfog``, see :func:`hamta.core.auto.chain_for`): the
+        basemap search's candidate places, each bounded by work rather than time.
 
     Returns
     -------
@@ -86,7 +90,7 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
             step_options = options if options.refine != "auto" else dataclasses.replace(options, refine=refine)
             return match_and_fit(inputs, name, p, step_options, mon, map_chunks)
 
-        return _unplaced(register_auto(attempt, options, rest, chain_for(inputs.plan.mode)), placed, target)
+        return _unplaced(register_auto(attempt, options, rest, chain_for(inputs.plan.mode, short)), placed, target)
     params = get_method(method).make_params(params)  # a wrong name or parameter is the caller's, not a crash
     with method_crashes(method):
         return _unplaced(match_and_fit(inputs, method, params, options, rest, map_chunks), placed, target)

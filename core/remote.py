@@ -6,13 +6,15 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
   (``FOOTPRINT_MARGIN``), at the zoom whose pixels match the target's;
 - otherwise the search area (``RegisterOptions.extent``), searched coarse to fine: read at the zoom
   where its longer side is about 1024, 2048, then 4096 px (``AREA_SIDES``), the target is located by
-  features voting for a pose (:mod:`hamta.core.matching.locate`: any rotation, scale and place); each
+  features voting for a pose (:mod:`hamta.core.matching.locate`: any rotation, scale and place; SIFT's
+  features, then, with the 'learned' extra, XFeat's where SIFT's best places did not verify); each
   of the few places where most features agree has its footprint (plus ``LOCATED_MARGIN``) read at the
   zoom nearest the target's own pixels, and the target is registered there with that place as its
   prior, as if it had been georeferenced there. At the first zoom, before the places with few agreeing
   features, the whole area is registered once as well (the target assumed to cover ``AREA_SHARE`` of
-  it). Each registration is verified like any other; the first verified one is the result (else the
-  best unverified one). A place found is only where to look, never a result; one that puts the target
+  it). Each registration is verified like any other, held to its share of one check's risk of
+  verifying a wrong model (``SEARCH_TRIES``: a search checks several); the first verified one is the
+  result (else the best unverified one). A place found is only where to look, never a result; one that puts the target
   outside the search area is not taken. The run's time budget bounds the whole search.
 
 Each area becomes a local GeoTIFF in the service's CRS (EPSG:3857 for XYZ layers) under the cache
@@ -35,13 +37,13 @@ from .basemap.tiles import NoTiles, fetch_area, tile_range
 from .coords import map_to_pixel, pixel_to_map, raster_outline
 from .errors import InputError, InsufficientMatchesError
 from .extent import bounds_in, parse_extent
-from .io.raster import open_raster, read_image, resolve_bands
+from .io.raster import open_raster, read_image
 from .io.working import footprint
-from .matching.locate import features, locate
+from .matching.places import CANDIDATES, MIN_INLIERS, candidates, learned_target_features, target_features
 from .options import RegisterOptions
 from .pipeline import register
 from .progress import Monitor
-from .verify import result_rank
+from .verify import VerifyParams, result_rank
 
 FOOTPRINT_MARGIN = 0.3  # of the footprint's larger side, each way: georeferencing off by up to a third of it
 LOCATED_MARGIN = 0.1  # the same once the coarse search has located the target (to a coarse pixel or so)
@@ -59,7 +61,7 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
 
     def register_onto(path, span, within=None, options=None, **extra):
         """``within``: the part of the area file to search (bounds in its CRS); all of it by default.
-        ``options``: the run's unless given (a search's places get a shorter time budget)."""
+        ``options``: the run's unless given (a search's places get what is left of its time budget)."""
         area = None if within is None else ",".join(f"{v:.10g}" for v in within) + f",{service.crs}"
         return register(target, path, options=dataclasses.replace(options or local, extent=area),
                         progress=span.report, is_canceled=span.canceled, **extra, **kwargs)
@@ -147,14 +149,14 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     module docstring); the result and the zoom it was registered onto. ``notes`` get what was searched."""
     service = reader.service
     bounds = _search_bounds(options.extent, service)
-    target, per_px = _target_features(info, options)
+    target, per_px = target_features(info, options.target_band)
+    learned = learned_target_features(target[2], info, options.target_band)
     zooms = _search_zooms(service, bounds)
     deadline = time.monotonic() + options.auto_budget_s
 
     def budgeted():
-        """The options of one place: 'auto' within :data:`PLACE_BUDGET_S` and what is left of the run's budget."""
-        left = max(0.0, deadline - time.monotonic())
-        return dataclasses.replace(options, auto_budget_s=min(left, PLACE_BUDGET_S))
+        """The options of one place: what is left of the run's time budget."""
+        return dataclasses.replace(options, auto_budget_s=max(0.0, deadline - time.monotonic()))
 
     best, places, searched, whole_tried = None, [], [], False
     for i, z in enumerate(zooms):
@@ -168,39 +170,32 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
         area = open_raster(path, "reference")
         image, valid = read_image(area, (1, 2, 3))
         _outside(valid, area.transform, bounds)
-        found = [c for c in locate(target[0], target[1], *features(image, valid), target[2])
-                 if c.inliers >= MIN_INLIERS][:CANDIDATES]
-        del image, valid  # up to 16 Mpx each, not needed while the places are registered
-        notes.append(f"searched {_size_text(bounds, service)} at zoom {z} ({_pixel_text(service, z)} pixels): "
-                     + (", ".join(f"a place with {c.inliers} agreeing features" for c in found)
-                        or "no place with enough agreeing features"))
-        todo = []
-        for c in found:
-            placed = area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
-            if not _seen(placed, info, places) and len(places) < MAX_PLACES:
-                places.append(placed)
-                todo.append((c.inliers, placed))
-        strong = [p for n, p in todo if n >= STRONG_INLIERS]
-        weak = [p for n, p in todo if n < STRONG_INLIERS]
-        for j, placed in enumerate(strong + [None] + weak):
-            step = span.span(0.4 + 0.6 * j / (len(todo) + 1), 0.4 + 0.6 * (j + 1) / (len(todo) + 1))
+        tried = []
+        for j, (found_by, c) in enumerate(candidates(target, learned, image, valid, not whole_tried)):
+            step = span.span(0.4 + 0.6 * j / STEPS_PER_ZOOM, 0.4 + 0.6 * min(j + 1, STEPS_PER_ZOOM) / STEPS_PER_ZOOM)
             if time.monotonic() > deadline:
                 notes.append(f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried")
                 break
-            if placed is None:  # after the strong places of the first zoom, before the weak ones
-                if whole_tried:
-                    continue
+            if c is None:
                 whole_tried = True
                 result, z_fine = _register_whole_area(info, reader, bounds, z, budgeted(), register_onto, step, notes)
             else:
+                placed = area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
+                if _seen(placed, info, places) or len(places) >= MAX_PLACES:
+                    continue
+                places.append(placed)
+                tried.append(f"a place {found_by} features found ({c.inliers} agreeing)")
                 result, z_fine = _register_placed(info, reader, placed, bounds, budgeted(), register_onto, step,
                                                   notes)
-            if result is None:
-                continue
-            if best is None or result_rank(result) > result_rank(best[0]):
+            if result is not None and (best is None or result_rank(result) > result_rank(best[0])):
                 best = result, z_fine
-            if result.verified:
-                return best
+            if best is not None and best[0].verified:
+                break
+        notes.append(f"searched {_size_text(bounds, service)} at zoom {z} ({_pixel_text(service, z)} pixels): "
+                     + (", ".join(tried) or "no place with enough agreeing features"))
+        del image, valid
+        if best is not None and best[0].verified:
+            return best
     if best is None:
         raise InsufficientMatchesError(
             f"The target raster '{info.path}' was not found in the search area ({_size_text(bounds, service)}, "
@@ -213,29 +208,12 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     return best
 
 
-MIN_INLIERS = 4  # agreeing features for a place to be registered there: the least a similarity fit can be
-# told from chance with, since the independent check of the registration decides, not the count
-CANDIDATES = 3  # places registered per zoom, most agreeing features first
 MAX_PLACES = 4  # places registered in all
-STRONG_INLIERS = 8  # places with fewer agreeing features are registered after the whole area (at the first zoom
-# searched: areas a few times the target's size, whose features are too few to vote, are found that way faster)
+STEPS_PER_ZOOM = 2 * CANDIDATES + 1  # places of both features and the whole area: the progress bar's steps
+SEARCH_TRIES = MAX_PLACES + 2  # registrations a search may check: the places and the whole area (coarse, then fine)
 AREA_SHARE = 7  # the share of the area's pixels a target is assumed to cover when the whole area is registered
-PLACE_BUDGET_S = 8.0  # s of 'auto' at each place (the run's budget bounds the whole search): at a wrong place
-# every method fails, and the fast ones find a right place (median 4 s on the basemap-real family)
-TARGET_SIDE = 384  # px: the target's longer side when it is located: at this size, the shapes that last (field
-# boundaries, roads, shores) outweigh what changes between dates (crops, water levels); 768 px found less on the
-# basemap-real family
 AREA_SIDES = (1024, 2048, 4096)  # px: the search area's longer side at each zoom searched, coarse to fine: the target
 # at 1/30 of the area's side is still 136 px at the last
-
-
-def _target_features(info, options: RegisterOptions):
-    """The target's locating features: (keypoints, descriptors, working shape) and working px per target px."""
-    per_px = min(1.0, TARGET_SIDE / max(info.width, info.height))
-    shape = (max(1, round(info.height * per_px)), max(1, round(info.width * per_px)))
-    image, valid = read_image(info, resolve_bands(info, options.target_band), None, shape)
-    per_px = shape[1] / info.width
-    return (*features(image, valid), shape), per_px
 
 
 def _search_zooms(service: TileService, bounds) -> list:
@@ -261,18 +239,32 @@ def _register_whole_area(info, reader: _Reader, bounds, z: int, options: Registe
     path = reader.read(bounds, z, monitor.span(0.0, 0.1))
     try:
         coarse = register_onto(path, monitor.span(0.1, 0.5), within=bounds, options=options,
-                               target_pixels=_guess_pixels(bounds, reader.service, z))
+                               target_pixels=_guess_pixels(bounds, reader.service, z), short=True)
     except InsufficientMatchesError as exc:
         notes.append(f"the target registered onto the whole area at zoom {z} gave no model ({exc})")
         return None, z
     if not _overlaps(coarse, info, bounds):
         return None, z
+    coarse = _held_to_the_search(coarse)
     notes.append(f"the target registered onto the whole area at zoom {z}: {coarse.verification.verdict}")
     fine, z_fine = _register_placed(info, reader, _placed_from(coarse, info), bounds, options, register_onto,
                                     monitor.span(0.5, 1.0), notes)
     if fine is not None and result_rank(fine) > result_rank(coarse):
         return fine, z_fine
     return coarse, z
+
+
+def _held_to_the_search(result):
+    """``result``, made 'suspect' where its check verified it but would not have at a :data:`SEARCH_TRIES`-th
+    of the chance levels: a search checks up to that many candidates, and a wrong one passes a single check
+    by chance more often the more are tried (on the basemap-real family, once in 29 searches)."""
+    v = result.verification
+    if not v.verified or VerifyParams(tolerance_px=v.tolerance_px).tried(SEARCH_TRIES).significant(v):
+        return result
+    reason = (f"the search checked up to {SEARCH_TRIES} candidates, and this one's agreement is not {SEARCH_TRIES} "
+              "times as unlikely by chance as one check asks")
+    return dataclasses.replace(result, verification=dataclasses.replace(v, verdict="suspect",
+                                                                        reasons=v.reasons + (reason,)))
 
 
 def _outside(valid: np.ndarray, transform, bounds) -> None:
@@ -318,14 +310,14 @@ def _register_placed(info, reader: _Reader, placed, bounds, options: RegisterOpt
     path = reader.read(around, z, monitor.span(0.0, 0.2))
     z = reader.zooms[-1]
     try:
-        result = register_onto(path, monitor.span(0.2, 1.0), options=options, placed=placed)
+        result = register_onto(path, monitor.span(0.2, 1.0), options=options, placed=placed, short=True)
     except InsufficientMatchesError as exc:
         notes.append(f"a place registered at zoom {z} gave no model ({exc})")
         return None, z
     if not _overlaps(result, info, bounds):
         notes.append(f"a place registered at zoom {z} put the target outside the search area; it was not taken")
         return None, z
-    return result, z
+    return _held_to_the_search(result), z
 
 
 def _zoom_in_budget(service: TileService, bounds, pixel_size: float, max_pixels: int) -> int:

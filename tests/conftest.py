@@ -71,6 +71,28 @@ def demo_pair(tmp_path_factory):
     return make_demo_pair(str(tmp_path_factory.mktemp("demo") / "sample"))
 
 
+def grey(bands):
+    """A (3, H, W) scene as grey float32."""
+    import cv2
+
+    return cv2.cvtColor(np.ascontiguousarray(np.moveaxis(bands, 0, 2)), cv2.COLOR_RGB2GRAY).astype(np.float32)
+
+
+def turned_window(area, centre, side, scale, angle_deg):
+    """A ``side`` px square target showing ``area`` around ``centre`` turned by ``angle_deg`` and magnified
+    ``scale`` times; the 2 x 3 matrix mapping target px to area px (corner convention)."""
+    import math
+
+    import cv2
+
+    a = math.radians(angle_deg)
+    lin = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]) / scale
+    off = np.asarray(centre, float) - lin @ np.array([side / 2.0, side / 2.0])
+    cv = np.column_stack([lin, off + lin @ np.array([0.5, 0.5]) - 0.5])
+    image = cv2.warpAffine(area, cv, (side, side), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
+    return image, np.column_stack([lin, off])
+
+
 def option_samples():
     """``(field, Option, value)`` for every registration and output option, ``value`` valid and not its
     default: what the tests that reach every option from each front end set."""

@@ -111,12 +111,19 @@ def locate(target_kp, target_desc, area_kp, area_desc, target_shape, limit: int 
         return []
     a_idx, t_idx = np.asarray(a_idx), np.asarray(t_idx)
     pose = _poses(target_kp, area_kp, t_idx, a_idx, target_shape)
+    return places(target_kp.xy[t_idx], area_kp.xy[a_idx], pose, target_shape, limit)
+
+
+def places(target_xy, area_xy, pose, target_shape, limit: int = 5) -> List[Candidate]:
+    """Up to ``limit`` places where matches (``target_xy`` <-> ``area_xy``, each with the ``pose`` it
+    predicts, see :func:`_poses`) agree, most inliers first, none within a quarter of the target's size
+    of a better one."""
     size = math.hypot(*target_shape)
     candidates: List[Candidate] = []
     for members, votes in _clusters(pose, size):
         if len(candidates) >= limit:
             break
-        fit = _fit(target_kp.xy[t_idx], area_kp.xy[a_idx], pose, members)
+        fit = _fit(target_xy, area_xy, pose, members)
         if fit is None:
             continue
         matrix, inliers = fit
@@ -128,6 +135,32 @@ def locate(target_kp, target_desc, area_kp, area_desc, target_shape, limit: int 
             continue
         candidates.append(Candidate(matrix, inliers, votes))
     return sorted(candidates, key=lambda c: -c.inliers)
+
+
+def learned_locate(turned, area, target_shape, limit: int = 5, min_cossim: float = 0.82) -> List[Candidate]:
+    """:func:`locate` with XFeat's upright features (:mod:`hamta.core.descriptors.xfeat`): ``turned`` holds
+    the target's features at each turn and scale tried (keypoints in target working pixels; the turn in
+    ``Keypoints.angle``, degrees counter-clockwise as displayed, the scale as 8 / ``Keypoints.size``),
+    ``area`` the area's. Mutual nearest neighbours within each turn vote for the pose that turn implies."""
+    from .nearest import mutual_nearest
+
+    txy, axy, pose = [], [], []
+    centre = np.array([target_shape[1] / 2.0, target_shape[0] / 2.0])
+    for f in turned:
+        it, ia, _ = mutual_nearest(f.descriptors, area.descriptors, min_cossim)
+        if len(it) == 0:
+            continue
+        turn, scale = math.radians(f.keypoints.angle[0]), 8.0 / f.keypoints.size[0]
+        cos, sin = math.cos(turn) * scale, math.sin(turn) * scale
+        t, a = f.keypoints.xy[it], area.keypoints.xy[ia]
+        d = centre - t
+        pose.append(np.column_stack([np.full(len(it), math.log2(scale)), np.full(len(it), turn % (2 * math.pi)),
+                                     a[:, 0] + cos * d[:, 0] + sin * d[:, 1], a[:, 1] - sin * d[:, 0] + cos * d[:, 1]]))
+        txy.append(t)
+        axy.append(a)
+    if sum(map(len, txy)) < MIN_VOTES:
+        return []
+    return places(np.concatenate(txy), np.concatenate(axy), np.concatenate(pose), target_shape, limit)
 
 
 def _poses(target_kp, area_kp, t_idx, a_idx, target_shape) -> np.ndarray:

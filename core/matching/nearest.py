@@ -78,3 +78,24 @@ def self_similar(features: Features, threshold: float) -> np.ndarray:
     self_first = idx[:, 0] == np.arange(n)
     other = np.where(self_first, dist[:, 1], dist[:, 0])  # an exact duplicate may come before the point itself
     return other < threshold
+
+
+def mutual_nearest(a: np.ndarray, b: np.ndarray, min_cossim: float, chunk: int = 4096):
+    """Indexes into unit descriptors ``a`` and ``b`` of mutual nearest neighbours whose cosine similarity
+    exceeds ``min_cossim``, and that similarity (computed in chunks of ``a``: bounded memory)."""
+    if len(a) == 0 or len(b) == 0:
+        return np.zeros(0, int), np.zeros(0, int), np.zeros(0)
+    best_b = np.empty(len(a), int)
+    sim_ab = np.empty(len(a), np.float32)
+    best_a = np.zeros(len(b), int)
+    sim_ba = np.full(len(b), -np.inf, np.float32)
+    for s in range(0, len(a), chunk):
+        sim = a[s:s + chunk] @ b.T
+        best_b[s:s + chunk] = sim.argmax(1)
+        sim_ab[s:s + chunk] = sim.max(1)
+        col = sim.argmax(0)
+        better = sim[col, np.arange(len(b))] > sim_ba
+        sim_ba[better] = sim[col[better], np.flatnonzero(better)]
+        best_a[better] = col[better] + s
+    ia = np.flatnonzero((best_a[best_b] == np.arange(len(a))) & (sim_ab > min_cossim))
+    return ia, best_b[ia], sim_ab[ia].astype(float)

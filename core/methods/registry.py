@@ -26,6 +26,9 @@ class Toolbox:
     title: str
 
 
+KINDS = ("method", "baseline", "faithful", "learned")
+
+
 @dataclass(frozen=True)
 class Method:
     """A registered matching method.
@@ -59,7 +62,8 @@ class Method:
         How this method's correspondences are refined at full resolution.
     kind : str
         'method' for the product version of a published method, 'faithful' for its as-published
-        version, 'baseline' for the comparisons they are measured against.
+        version, 'baseline' for the comparisons they are measured against, 'learned' for a learned
+        matcher of the optional extra (listed last: without the extra it only says what to install).
     use_when : str
         When a user should choose it (one short line for ``hamta methods``); faithful versions and
         baselines say what they are for when left empty.
@@ -87,9 +91,9 @@ class Method:
     @property
     def menu_key(self):
         """Its place in every list of methods: product methods, then baselines, then faithful versions,
-        each kind by name. The Processing batch's method enum follows it (qgis_process passes its index:
-        a method added later may move the indexes after it; names are stable)."""
-        return {"method": 0, "baseline": 1, "faithful": 2}.get(self.kind, 3), self.name
+        each kind by name, then the learned ones. The Processing batch's method enum follows it (qgis_process
+        passes its index: a method added later may move the indexes after it; names are stable)."""
+        return KINDS.index(self.kind), self.name
 
     @property
     def advice(self) -> str:

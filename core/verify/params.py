@@ -79,6 +79,18 @@ class VerifyParams:
         return replace(self, max_chance=self.max_chance / 2, max_z_chance=self.max_z_chance / 2,
                        max_rank_chance=self.max_rank_chance / 2)
 
+    def tried(self, n: int) -> "VerifyParams":
+        """The chance levels for one of ``n`` candidates a search tries: each divided by ``n`` (Bonferroni),
+        so that the search as a whole keeps one check's risk of verifying a wrong model."""
+        return replace(self, max_chance=self.max_chance / n, max_z_chance=self.max_z_chance / n,
+                       max_rank_chance=self.max_rank_chance / n)
+
+    def significant(self, v: "Verification") -> bool:
+        """Whether ``v``'s agreement is as unlikely from wrong alignments as these levels ask (the second look's
+        verdicts against these levels' second look)."""
+        p = self.second_look() if v.look == "structure" else self
+        return v.chance <= p.max_chance or (v.z_chance <= p.max_z_chance and v.z_mw <= p.max_rank_chance)
+
     @property
     def agree_px(self) -> float:
         return min(max(self.tolerance_px, 2.0), 6.0)

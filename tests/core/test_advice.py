@@ -22,5 +22,7 @@ def test_each_option_that_may_help_is_named_with_its_value():
 
 def test_only_what_applies_is_suggested():
     tips = advice(_result(mode="search", error=4.0, model="tps", local=True))
-    assert [t.option for t in tips] == ["accept_unverified"]  # an error beyond the tolerance: not the tolerance
+    assert [t.option for t in tips] == ["extent", "accept_unverified"]  # an error beyond the tolerance: not the
+    # tolerance; a search: a closer search area
+    assert spelled(tips[0]) == "--extent xmin,ymin,xmax,ymax (QGIS: 'Search area')"
     assert advice(_result(verified=True)) == []

@@ -20,6 +20,7 @@ def test_escalates_to_a_method_whose_result_verifies(tmp_path, shared, monkeypat
     case = build_case(spec, str(tmp_path), 512, str(shared / "data"))
     chain = (Step("phasecorr", {}, "test"), Step("sift", {}, "test"), Step("cfog", {}, "test"))
     monkeypatch.setattr(auto_module, "CHAIN", chain)
+    monkeypatch.setattr(auto_module, "learned_steps", lambda prior: ())
     result = register(case.target, case.reference)
     attempts = result.auto.attempts
     assert result.method == "cfog" and result.verified and attempts[-1].accepted
@@ -32,6 +33,7 @@ def test_nothing_found_names_every_attempt(raster_writer, demo_pair, monkeypatch
 
     noise = raster_writer("noise.tif", np.random.default_rng(0).integers(0, 255, (300, 300), dtype=np.uint8))
     monkeypatch.setattr(auto_module, "CHAIN", (Step("sift", {}, "test"), Step("orb", {}, "test")))
+    monkeypatch.setattr(auto_module, "learned_steps", lambda prior: ())
     with pytest.raises(InsufficientMatchesError, match="'auto' tried sift: .*; orb: "):
         register(noise, demo_pair["reference"])
 
@@ -76,6 +78,7 @@ def test_a_bug_in_a_method_ends_auto_naming_the_method(demo_pair, raising_method
 
     name = raising_method(error)
     monkeypatch.setattr(auto_module, "CHAIN", (Step(name, {}, "test"), Step("sift", {}, "test")))
+    monkeypatch.setattr(auto_module, "learned_steps", lambda prior: ())
     with pytest.raises(MethodCrashed, match=rf"internal error in method '{name}' \({type(error).__name__}: ") as info:
         register(demo_pair["target"], demo_pair["reference"])
     assert info.value.method == name and info.value.__cause__ is error and not isinstance(info.value, HamtaError)
@@ -86,6 +89,7 @@ def test_a_bug_in_a_method_ends_auto_naming_the_method(demo_pair, raising_method
 def test_no_model_from_a_method_lets_auto_go_on(demo_pair, raising_method, monkeypatch):
     name = raising_method(InsufficientMatchesError("only 2 matches", 2, 8))
     monkeypatch.setattr(auto_module, "CHAIN", (Step(name, {}, "test"), Step("sift", {}, "test")))
+    monkeypatch.setattr(auto_module, "learned_steps", lambda prior: ())
     result = register(demo_pair["target"], demo_pair["reference"])
     first, second = result.auto.attempts
     assert (first.method, first.outcome, first.reason) == (name, "no model", "only 2 matches")

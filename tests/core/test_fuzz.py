@@ -44,7 +44,8 @@ FAMILIES = {"opencv": ["sift", "orb", "phasecorr", "shift"],
             "rilbp": ["rilbp", "rilbp-faithful", "cslbp", "censure-sift"],
             "sibrif": ["sibrif", "sibrif-faithful", "pca-sift"],
             "sar": ["ndsift-pc", "ndsift-pc-faithful", "ndss-sift", "gss-sift", "bfsift"],
-            "structural": ["cfog", "lines-spectral-faithful", "lines-eigen", "lines-vspm"], "phase": ["xmodal", "rift"],
+            "structural": ["cfog", "lines-spectral-faithful", "lines-eigen", "lines-vspm"],
+            "phase": ["xmodal", "rift", "xfeat"],
             "auto": ["auto"]}
 FAMILY = os.environ.get("HAMTA_FUZZ_FAMILY")
 METHODS = FAMILIES[FAMILY] if FAMILY in FAMILIES else [m for ms in FAMILIES.values() for m in ms]

@@ -1,8 +1,6 @@
 """Locating a small target in a large search area (:mod:`hamta.core.matching.locate`), and a layer's
 finest zoom found when a tile template does not say it."""
-import math
 
-import cv2
 import numpy as np
 import pytest
 
@@ -13,30 +11,15 @@ from hamta.core.basemap.services import parse_service
 from hamta.core.basemap.tiles import NoTiles
 from hamta.core.matching.locate import features, locate
 from hamta.core.remote import _Reader
-
-
-def _grey(bands):
-    """A (3, H, W) scene as grey float32."""
-    return cv2.cvtColor(np.ascontiguousarray(np.moveaxis(bands, 0, 2)), cv2.COLOR_RGB2GRAY).astype(np.float32)
-
-
-def _turned_window(area, centre, side, scale, angle_deg):
-    """A ``side`` px square target showing ``area`` around ``centre`` turned by ``angle_deg`` and magnified
-    ``scale`` times; the 2 x 3 matrix mapping target px to area px (corner convention)."""
-    a = math.radians(angle_deg)
-    lin = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]) / scale
-    off = np.asarray(centre, float) - lin @ np.array([side / 2.0, side / 2.0])
-    cv = np.column_stack([lin, off + lin @ np.array([0.5, 0.5]) - 0.5])
-    image = cv2.warpAffine(area, cv, (side, side), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP)
-    return image, np.column_stack([lin, off])
+from tests.conftest import grey, turned_window
 
 
 @pytest.mark.parametrize("angle, scale", [(0.0, 1.0), (37.0, 2.0), (-150.0, 0.7)])
 def test_a_turned_rescaled_target_is_found_in_an_area_16_times_its_size(angle, scale):
-    area = _grey(make_landscape((1600, 1600), seed=3))
+    area = grey(make_landscape((1600, 1600), seed=3))
     side = 400
     centre = (1100.0, 450.0)
-    target, truth = _turned_window(area, centre, side, scale, angle)
+    target, truth = turned_window(area, centre, side, scale, angle)
     found = locate(*features(target, np.ones(target.shape, bool)), *features(area, np.ones(area.shape, bool)),
                    target.shape)
     assert found, "no candidate"
@@ -48,18 +31,18 @@ def test_a_turned_rescaled_target_is_found_in_an_area_16_times_its_size(angle, s
 
 
 def test_unrelated_images_give_no_strong_candidate():
-    area = _grey(make_landscape((1200, 1200), seed=3))
-    other = _grey(make_landscape((400, 400), seed=11))
+    area = grey(make_landscape((1200, 1200), seed=3))
+    other = grey(make_landscape((400, 400), seed=11))
     found = locate(*features(other, np.ones(other.shape, bool)), *features(area, np.ones(area.shape, bool)),
                    other.shape)
-    assert all(c.inliers < 6 for c in found), found  # remote.MIN_INLIERS: none would be registered
+    assert all(c.inliers < 6 for c in found), found  # places.MIN_INLIERS: none would be registered
 
 
 def test_features_of_a_large_area_are_detected_block_by_block_like_the_whole():
     """Blocks with a margin find the keypoints a whole-image detection finds (the same scale space inside)."""
     from scipy.spatial import cKDTree
 
-    area = _grey(make_landscape((1100, 1000), seed=5))
+    area = grey(make_landscape((1100, 1000), seed=5))
     valid = np.ones(area.shape, bool)
     whole, _ = features(area, valid, per_block=100_000, block=4096)
     blocks, _ = features(area, valid, per_block=100_000, block=512)
@@ -110,3 +93,25 @@ def test_a_place_found_stands_in_for_the_target_s_georeferencing(landsat, tmp_pa
     assert np.abs(result.model.apply(grid) - expected).max() < 0.5
     assert not result.target.georeferenced and result.plan.mode == "search"
     assert result.auto.attempts[0].method == "shift"
+
+
+def test_a_search_holds_each_candidate_to_its_share_of_one_checks_risk(demo_pair):
+    """A check verified at one of the search's candidates stands only when its agreement would be
+    SEARCH_TRIES times as unlikely by chance; else it is 'suspect', saying why."""
+    import dataclasses
+
+    from hamta.core import register
+    from hamta.core.remote import SEARCH_TRIES, _held_to_the_search
+
+    result = register(demo_pair["target"], demo_pair["reference"], "sift")
+    v = dataclasses.replace(result.verification, look="grid", z_chance=1.0, z_mw=1.0)
+    assert result.verified
+    single = dataclasses.replace(result, verification=dataclasses.replace(v, chance=1e-5 / SEARCH_TRIES * 2))
+    held = _held_to_the_search(single)
+    assert held.verification.verdict == "suspect" and "checked up to" in held.verification.reasons[-1]
+    strong = dataclasses.replace(result, verification=dataclasses.replace(v, chance=1e-5 / SEARCH_TRIES / 2))
+    assert _held_to_the_search(strong) is strong
+    by_shape = dataclasses.replace(v, chance=1.0, z_chance=1e-6 / SEARCH_TRIES / 1.5, z_mw=1e-3 / SEARCH_TRIES / 1.5)
+    assert _held_to_the_search(dataclasses.replace(result, verification=by_shape)).verified
+    second_look = dataclasses.replace(by_shape, look="structure")  # held to half the levels: not enough now
+    assert not _held_to_the_search(dataclasses.replace(result, verification=second_look)).verified

@@ -102,4 +102,4 @@ def test_the_command_line_and_the_bench_list_the_methods_in_one_order(capsys):
     rows = [line.split()[0] for line in capsys.readouterr().out.splitlines()[1:] if line.strip()][:-1]
     assert rows == default_methods(quick=False) == ["auto", *all_methods()]
     kinds = [all_methods()[name].kind for name in rows[1:]]
-    assert kinds == sorted(kinds, key=["method", "baseline", "faithful"].index)
+    assert kinds == sorted(kinds, key=["method", "baseline", "faithful", "learned"].index)
