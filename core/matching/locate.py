@@ -145,17 +145,12 @@ def learned_locate(turned, area, target_shape, limit: int = 5, min_cossim: float
     from .nearest import mutual_nearest
 
     txy, axy, pose = [], [], []
-    centre = np.array([target_shape[1] / 2.0, target_shape[0] / 2.0])
     for f in turned:
         it, ia, _ = mutual_nearest(f.descriptors, area.descriptors, min_cossim)
         if len(it) == 0:
             continue
-        turn, scale = math.radians(f.keypoints.angle[0]), 8.0 / f.keypoints.size[0]
-        cos, sin = math.cos(turn) * scale, math.sin(turn) * scale
         t, a = f.keypoints.xy[it], area.keypoints.xy[ia]
-        d = centre - t
-        pose.append(np.column_stack([np.full(len(it), math.log2(scale)), np.full(len(it), turn % (2 * math.pi)),
-                                     a[:, 0] + cos * d[:, 0] + sin * d[:, 1], a[:, 1] - sin * d[:, 0] + cos * d[:, 1]]))
+        pose.append(_pose(t, a, math.radians(f.keypoints.angle[0]), 8.0 / f.keypoints.size[0], target_shape))
         txy.append(t)
         axy.append(a)
     if sum(map(len, txy)) < MIN_VOTES:
@@ -168,12 +163,18 @@ def _poses(target_kp, area_kp, t_idx, a_idx, target_shape) -> np.ndarray:
     position in the area, as each match predicts them."""
     scale = area_kp.size[a_idx] / target_kp.size[t_idx]
     turn = np.radians(target_kp.angle[t_idx] - area_kp.angle[a_idx])  # OpenCV's angles are clockwise
+    return _pose(target_kp.xy[t_idx], area_kp.xy[a_idx], turn, scale, target_shape)
+
+
+def _pose(target_xy, area_xy, turn, scale, target_shape) -> np.ndarray:
+    """The poses (see :func:`_poses`) of matches under their ``turn`` (radians) and ``scale``."""
     centre = np.array([target_shape[1] / 2.0, target_shape[0] / 2.0])
-    d = centre - target_kp.xy[t_idx]
+    d = centre - target_xy
     cos, sin = np.cos(turn) * scale, np.sin(turn) * scale
-    cx = area_kp.xy[a_idx, 0] + cos * d[:, 0] + sin * d[:, 1]
-    cy = area_kp.xy[a_idx, 1] - sin * d[:, 0] + cos * d[:, 1]
-    return np.column_stack([np.log2(scale), np.mod(turn, 2 * np.pi), cx, cy])
+    cx = area_xy[:, 0] + cos * d[:, 0] + sin * d[:, 1]
+    cy = area_xy[:, 1] - sin * d[:, 0] + cos * d[:, 1]
+    return np.column_stack([np.broadcast_to(np.log2(scale), cx.shape), np.broadcast_to(np.mod(turn, 2 * np.pi),
+                                                                                       cx.shape), cx, cy])
 
 
 def _clusters(pose: np.ndarray, size: float):

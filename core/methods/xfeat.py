@@ -18,6 +18,7 @@ import numpy as np
 
 from ..descriptors import xfeat
 from ..errors import InputError
+from ..estimation.affine2d import resize
 from ..estimation.ransac import ransac_or_none
 from ..matching.nearest import mutual_nearest
 from ..types import Matches
@@ -51,8 +52,8 @@ def match(target, reference, params: XfeatParams, monitor, seed: int = 0) -> Mat
         raise InputError(xfeat.missing_text())
     size = max(target.data.size, reference.data.size)
     shrink = min(1.0, math.sqrt(params.max_pixels / size))
-    target_data, target_valid, t_scale = _shrunk(target.data, target.valid, shrink)
-    ref_data, ref_valid, r_scale = _shrunk(reference.data, reference.valid, shrink)
+    target_data, target_valid, t_scale = _shrunk(target, shrink)
+    ref_data, ref_valid, r_scale = _shrunk(reference, shrink)
     fr = xfeat.features(ref_data, ref_valid, params.top_k)
     monitor.report(0.3, "XFeat keypoints")
     turns = [a for a in np.arange(-180.0 + STEP_DEG, 180.0 + 1e-9, STEP_DEG) if abs(a) <= params.max_rotation_deg]
@@ -68,18 +69,12 @@ def match(target, reference, params: XfeatParams, monitor, seed: int = 0) -> Mat
     return best
 
 
-def _shrunk(data: np.ndarray, valid: np.ndarray, factor: float):
-    """``data`` and ``valid`` scaled by about ``factor`` (<= 1), and the exact (x, y) scale (corner convention:
-    x_small = x * scale)."""
+def _shrunk(image, factor: float):
+    """A working image's data and validity scaled by about ``factor`` (<= 1), and the exact (x, y) scale."""
     if factor >= 1.0:
-        return data, valid, np.ones(2)
-    import cv2
-
-    size = (max(1, round(data.shape[1] * factor)), max(1, round(data.shape[0] * factor)))
-    small = cv2.resize(np.where(valid, data, 0).astype(np.float32), size, interpolation=cv2.INTER_AREA)
-    share = cv2.resize(valid.astype(np.float32), size, interpolation=cv2.INTER_AREA)
-    scale = np.array([size[0] / data.shape[1], size[1] / data.shape[0]])
-    return np.where(share > 0.99, small / np.maximum(share, 1e-6), 0).astype(np.float32), share > 0.99, scale
+        return image.data, image.valid, np.ones(2)
+    data, valid, m = resize(image.data, image.valid, factor)
+    return data, valid, np.array([m[0, 0], m[1, 1]])
 
 
 def _agreeing(found: Matches, seed: int) -> int:
