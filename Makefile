@@ -46,7 +46,8 @@ package:
 	$(PYTHON) tools/package.py
 
 # The long fuzzing profile: 2,000 rasters per method family (and 2,000 parameter sets and reports), two
-# families at a time; outcomes are tallied from fuzz-output/*.jsonl at the end (hours on 2 cores).
+# families at a time, then 2,000 map-server answers (tests/core/test_fuzz_server.py); outcomes are tallied
+# from fuzz-output/*.jsonl at the end (hours on 2 cores).
 # FUZZ_EXAMPLES=200 gives a shorter run.
 FUZZ_FAMILIES := opencv rilbp sibrif sar structural phase auto inputs
 FUZZ_EXAMPLES ?= 2000
@@ -56,6 +57,9 @@ fuzz: $(VENV)/.ok
 		HAMTA_FUZZ_LOG=fuzz-output/{}.jsonl $(VENV)/bin/python -P -m pytest tests/core/test_fuzz.py -q \
 		-k "$$( [ {} = inputs ] && echo "parameter or map_points or georeferencing" || echo any_raster )" > fuzz-output/{}.log 2>&1; \
 		echo "fuzz {}: pytest exit $$? (fuzz-output/{}.log)"'
+	@HYPOTHESIS_PROFILE=long HAMTA_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) HAMTA_FUZZ_LOG=fuzz-output/server.jsonl \
+		$(VENV)/bin/python -P -m pytest tests/core/test_fuzz_server.py -q > fuzz-output/server.log 2>&1; \
+		echo "fuzz server (map-server answers): pytest exit $$? (fuzz-output/server.log)"
 	$(VENV)/bin/python tools/fuzz_summary.py fuzz-output/*.jsonl
 
 $(VENV)/.ok: pyproject.toml

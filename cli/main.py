@@ -11,6 +11,7 @@ import time
 from typing import List, Optional
 
 from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
+from ..core.text import terminal_safe
 from .options import FLAGS, settings_from
 from .progress import ProgressBar
 
@@ -38,6 +39,7 @@ def cmd_register(args) -> int:
     from ..core.outputs import OutputPaths
 
     options, output = settings_from(args)
+    _outside_the_cache(args.out)
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format, overwrite=args.overwrite,
                                   only=None if args.outputs is None else args.outputs.split(","))
     cluster = contextlib.nullcontext() if not args.scheduler else scheduler_map(args.scheduler)
@@ -97,6 +99,15 @@ def _fmt(v) -> str:
     return "n/a" if v is None else f"{v:.3f}"
 
 
+def _outside_the_cache(out: str) -> None:
+    """Refuse an output folder inside Hamta's cache (a cache entry could replace an output, or the reverse)."""
+    from ..core.basemap.cache import default_cache
+
+    out, cache = os.path.realpath(out), os.path.realpath(default_cache())
+    if out == cache or out.startswith(cache + os.sep):
+        raise ValueError(f"--out '{out}' is inside Hamta's cache folder '{cache}'; choose a folder outside it")
+
+
 def cmd_batch(args) -> int:
     from ..core.batch import read_jobs, run_batch
     from ..core.batch.table import write_results
@@ -105,6 +116,7 @@ def cmd_batch(args) -> int:
     if args.workers is not None and args.workers < 1:
         raise ValueError(f"--workers must be at least 1 (default: the CPU count), got {args.workers}")
     options, output = settings_from(args)
+    _outside_the_cache(args.out)
     jobs = read_jobs(args.source, args.out, args.reference)
     settings = BatchSettings(method=args.method, options=options, output=output,
                              accept_unverified=args.accept_unverified, overwrite=args.overwrite)
@@ -398,9 +410,11 @@ def _main(argv) -> int:
 
 
 class Tolerant:
-    """A standard stream that cannot end the run: once the reader has gone (``| head``), the stream is
-    closed (``>&-``) or its disk is full (``>/dev/full``), what is written is dropped, so the exit
-    code still says what the command did (its outputs are published whatever the terminal does)."""
+    """A standard stream that cannot end the run, nor be turned against the terminal: control characters
+    other than newline, tab and carriage return are escaped (a message may quote a server). Once the
+    reader has gone (``| head``), the stream is closed (``>&-``) or its disk is full (``>/dev/full``),
+    what is written is dropped, so the exit code still says what the command did (its outputs are
+    published whatever the terminal does)."""
 
     def __init__(self, stream):
         self.stream = stream
@@ -409,7 +423,7 @@ class Tolerant:
     def write(self, text: str) -> int:
         if not self.broken:
             try:
-                self.stream.write(text)
+                self.stream.write(terminal_safe(text))
             except (OSError, ValueError):
                 self._drop()
         return len(text)

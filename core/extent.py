@@ -26,6 +26,9 @@ class Extent:
         return ",".join(f"{v:.10g}" for v in self.bounds) + (f",{self.crs}" if self.crs else "")
 
 
+MAX_COORDINATE = 1e10  # map units: every projected CRS fits (the Earth is 4e7 m round), so larger is a typo
+
+
 def parse_extent(text: str) -> Extent:
     """``xmin,ymin,xmax,ymax`` optionally followed by ``,CRS`` (an authority code such as EPSG:4326)."""
     parts = [p.strip() for p in str(text).replace(";", ",").split(",")]
@@ -37,6 +40,9 @@ def parse_extent(text: str) -> Extent:
         xmin, ymin, xmax, ymax = (float(p) for p in parts[:4])
     except ValueError:
         raise ValueError(usage) from None
+    if not all(abs(v) <= MAX_COORDINATE for v in (xmin, ymin, xmax, ymax)):  # nan and inf too
+        raise ValueError(f"the search area '{text}' has a coordinate beyond any map (above {MAX_COORDINATE:g} map "
+                         "units)")
     if not (xmin < xmax and ymin < ymax):
         raise ValueError(f"the search area '{text}' is empty: xmin must be below xmax and ymin below ymax")
     crs = parts[4] if len(parts) == 5 and parts[4] else None

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-import os
 import time
 
 import numpy as np
@@ -81,7 +80,8 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
         result, z = _search(info, reader, options, monitor, register_onto, notes)
     record = {"service": service.label, "id": service.id, "kind": service.kind, "crs": service.crs,
               "zoom": z, "zooms_read": reader.zooms, "fetch": reader.fetcher.stats.to_dict()}
-    return dataclasses.replace(result, reference_service=record, notes=notes + list(result.notes))
+    return dataclasses.replace(result, reference_service=record,
+                               notes=reader.fetcher.warnings + notes + list(result.notes))
 
 
 def uses_georeferencing(info, options: RegisterOptions) -> bool:
@@ -113,9 +113,7 @@ class _Reader:
     def __init__(self, service: TileService, fetcher: Fetcher):
         self.service, self.fetcher, self.zooms = service, fetcher, []
         self.finest, self.empty_from = service.zmax, None
-        if fetcher.cache:
-            os.makedirs(fetcher.cache, mode=0o700, exist_ok=True)  # made private; an existing folder is as it is
-        self.folder = os.path.join(fetcher.cache, "areas") if fetcher.cache else _temporary()
+        self.folder = fetcher.folder("areas") or _temporary()
 
     def read(self, bounds, z: int, monitor: Monitor) -> str:
         """The GeoTIFF of ``bounds`` at zoom ``z`` or, where the layer has no tile there, at the nearest

@@ -12,6 +12,7 @@ from __future__ import annotations
 import hashlib
 import math
 import os
+import tempfile
 
 from qgis.core import (
     QgsCoordinateReferenceSystem,
@@ -22,7 +23,7 @@ from qgis.core import (
     QgsRectangle,
 )
 
-from ..core.basemap.fetch import default_cache
+from ..core.basemap.cache import Cache, Unusable, default_cache
 from ..core.errors import InputError
 from ..core.extent import parse_extent
 from ..core.io.raster import open_raster
@@ -95,13 +96,13 @@ class Rendering:
         self.provider, self.crs, self.rect = provider.clone(), layer.crs(), rect
         self.name, self.kind = layer.name(), layer.providerType()
         key = f"{self.kind}|{layer.source()}|{rect.toString(12)}|{self.cols}x{self.rows}"
-        self.path = os.path.join(default_cache(), "layers", hashlib.sha256(key.encode()).hexdigest()[:24] + ".tif")
+        self.warnings = []  # why the cache is not used, when it is not
+        self.path = os.path.join(_layers_folder(self.warnings), hashlib.sha256(key.encode()).hexdigest()[:24] + ".tif")
 
     def write(self, feedback=None) -> str:
         """The GeoTIFF's path (``feedback``: a ``QgsRasterBlockFeedback`` that may cancel)."""
-        if os.path.isfile(self.path):
+        if os.path.isfile(self.path) and not os.path.islink(self.path):
             return self.path
-        os.makedirs(os.path.dirname(self.path), mode=0o700, exist_ok=True)
         tmp = self.path + f".{os.getpid()}.part.tif"
         pipe = QgsRasterPipe()
         if not pipe.set(self.provider):
@@ -113,3 +114,14 @@ class Rendering:
                              f"({self.kind} provider, error {int(error)}).")
         os.replace(tmp, self.path)
         return self.path
+
+
+def _layers_folder(warnings: list) -> str:
+    """The cache's ``layers`` folder, or a private temporary one where the cache cannot be used safely."""
+    store = Cache.open(default_cache(), warnings)
+    try:
+        if store is not None:
+            return store.folder("layers")
+    except Unusable as exc:
+        warnings.append(f"The cache folder '{store.root}' is not used: {exc}.")
+    return tempfile.mkdtemp(prefix="hamta-layer-")

@@ -1,41 +1,43 @@
-"""HTTP fetching for map services: parallel, bounded, retried, cached on disk, cancellable.
+"""Fetching map-service tiles: parallel, bounded, retried, cached on disk, cancellable.
 
-Only the standard library (``urllib``) is used. A response is cached under a hash of its URL,
-so a rerun or a batch over the same area sends no request. Every failure ends as a
-:class:`ServiceError` naming the host and what went wrong, never a traceback.
+Each request goes through :mod:`hamta.core.basemap.http` (a deadline for the whole request, a cap on
+its bytes, redirects to http(s) only). A time-out, a cut or garbled answer or a status in
+``RETRY_STATUS`` is asked again; a tile that still fails is a failure of the run, never an empty tile
+(only HTTP 204 and 404 are: outside the layer's coverage). Answers are decoded by the caller's
+``decode`` in the worker threads, as they arrive, so no more than the tiles in flight are held as
+bytes; only answers that decode are cached (:mod:`hamta.core.basemap.cache`), and a cached one that no
+longer decodes is dropped and fetched again. The workers are daemon threads and a cancel shuts their
+sockets: Ctrl-C ends a run at once, whatever the server does. Every failure ends as a
+:class:`ServiceError` naming the host and what went wrong (the server's words made printable).
 """
 from __future__ import annotations
 
 import hashlib
-import http.client
 import os
-import socket
-import tempfile
+import queue
 import threading
 import time
-import urllib.error
-import urllib.request
-from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field
-from typing import List, Optional, Sequence
-from urllib.parse import urlsplit
+from typing import Callable, Iterator, List, Optional, Sequence, Tuple
 
-from ..errors import InputError, RegistrationCanceled
-from ..version import __version__
+from ..errors import InputError
+from . import http
+from .cache import Cache, Unusable, default_cache
 from .redact import redact
 
-RETRY_STATUS = (429, 500, 502, 503, 504)  # worth asking again after a pause
+__all__ = ["Fetcher", "FetchStats", "ServiceError", "Unusable", "default_cache", "host"]
+
+RETRY_STATUS = (408, 425, 429, 500, 502, 503, 504)  # worth asking again after a pause
 MISSING_STATUS = (204, 404)  # a tile outside the layer's coverage: empty, not a failure
 
 
 class ServiceError(InputError):
-    """A map service could not deliver: unreachable, an HTTP error, a time-out or too many requests."""
+    """A map service could not deliver: unreachable, an HTTP error, a time-out, a bad or oversized
+    answer, or too many requests."""
 
 
-def default_cache() -> str:
-    """``$HAMTA_CACHE`` or the user's cache folder (``$XDG_CACHE_HOME/hamta``, ``~/.cache/hamta``)."""
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return os.environ.get("HAMTA_CACHE") or os.path.join(base, "hamta")
+class BadAnswer(Exception):
+    """Raised by a ``decode`` for an answer that is not what was asked for (its text says what it is)."""
 
 
 @dataclass
@@ -55,13 +57,14 @@ class FetchStats:
 
 @dataclass
 class Fetcher:
-    """Fetches URLs for one run.
+    """Fetches the tiles of one run.
 
-    ``timeout_s`` bounds each socket operation of a request; a time-out, a broken connection or
-    answer, or a status in ``RETRY_STATUS`` is retried ``retries`` times after ``backoff_s``, doubled
-    each time. ``max_requests`` caps the requests of the run, retries included (cache hits are
-    free). ``cache`` is a folder (None: no disk cache); only answers that ``get_many``'s ``valid``
-    accepts are kept there, so an error page is asked for again next time.
+    ``timeout_s`` bounds each request whole (connection, headers and body); a failure worth retrying
+    is asked again ``retries`` times after ``backoff_s``, doubled each time. ``max_requests`` caps the
+    requests of the run, retries included (cache hits are free); ``max_bytes`` one answer's bytes;
+    ``max_run_bytes`` and ``budget_s`` what the run receives and the time it spends fetching in all.
+    ``cache`` is a folder (None: no disk cache); one that cannot be used safely is not used, with a
+    line in ``warnings``.
     """
 
     cache: Optional[str] = field(default_factory=default_cache)
@@ -70,151 +73,194 @@ class Fetcher:
     backoff_s: float = 0.5
     workers: int = 8
     max_requests: int = 2000
+    max_bytes: int = 8 << 20
+    max_run_bytes: int = 512 << 20
+    budget_s: float = 600.0
     stats: FetchStats = field(default_factory=FetchStats)
+    warnings: List[str] = field(default_factory=list)
 
     def __post_init__(self):
         self._lock = threading.Lock()
+        self.store = Cache.open(self.cache, self.warnings)
+        if self.store is None:
+            self.cache = None
 
-    def get_many(self, urls: Sequence[str], monitor=None, valid=None) -> List[Optional[bytes]]:
-        """The body of each URL (None for a tile the service does not have), in order.
+    def folder(self, name: str) -> Optional[str]:
+        """The cache's subfolder ``name`` (made private), or None without a usable cache (with a warning)."""
+        if self.store is None:
+            return None
+        try:
+            return self.store.folder(name)
+        except Unusable as exc:
+            self.warnings.append(f"The cache folder '{self.store.root}' is not used: {exc}.")
+            self.store, self.cache = None, None
+            return None
 
-        ``monitor`` (a :class:`hamta.core.progress.Monitor`) gets progress and may cancel. ``valid(url,
-        body)`` raises :class:`ServiceError` for a body that is not what was asked for (it is not cached).
-        """
+    def each(self, urls: Sequence[str], decode: Callable[[str, bytes], object], monitor=None
+             ) -> Iterator[Tuple[int, Optional[object]]]:
+        """``(i, decode(urls[i], body))`` for each URL as its answer arrives (``None`` for a tile the
+        service does not have). ``decode`` runs in the worker threads and raises :class:`BadAnswer` for
+        a body that is not what was asked for (not cached; a cached one is dropped and fetched again).
+        ``monitor`` (a :class:`hamta.core.progress.Monitor`) gets progress and may cancel."""
         start = time.perf_counter()
-        bodies: List[Optional[bytes]] = [None] * len(urls)
-        todo = []
-        for i, url in enumerate(urls):
-            cached = self._cached(url)
-            if cached is None:
-                todo.append(i)
-            else:
-                bodies[i] = cached
-                self.stats.cache_hits += 1
-        if todo and len(todo) > self.max_requests - self.stats.requests:
-            raise ServiceError(f"The map service at {host(urls[todo[0]])} would need {len(todo)} more requests, above "
-                               f"the cap of {self.max_requests} per run: choose a smaller search area.")
-        done, stop = len(urls) - len(todo), threading.Event()
-        pool = ThreadPoolExecutor(max_workers=max(1, self.workers))
-        pending = {pool.submit(self._fetch, urls[i], stop, valid): i for i in todo}
+        tasks: "queue.Queue[int]" = queue.Queue()
+        for i in range(len(urls)):
+            tasks.put(i)
+        results: "queue.Queue" = queue.Queue()
+        watch = http.Watch()
+        run = _Run(self, urls, decode, watch, tasks, results)
+        for _ in range(max(1, min(self.workers, len(urls)))):
+            threading.Thread(target=run.work, name="hamta-fetch", daemon=True).start()
+        done = 0
         try:
-            while pending:
-                finished, _ = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
-                for future in finished:
-                    bodies[pending.pop(future)] = future.result()
-                    done += 1
+            while done < len(urls):
+                try:
+                    i, value, error = results.get(timeout=0.1)
+                except queue.Empty:
+                    if monitor is not None:
+                        monitor.check()
+                    continue
+                if error is not None:
+                    raise error
+                done += 1
                 if monitor is not None:
-                    monitor.report(done / max(1, len(urls)), f"fetching tiles {done}/{len(urls)}")
-        except BaseException:
-            stop.set()  # requests in flight end at their time-out; nobody waits for them
-            raise
+                    monitor.report(done / len(urls), f"fetching tiles {done}/{len(urls)}")
+                yield i, value
         finally:
-            pool.shutdown(wait=not stop.is_set(), cancel_futures=True)
+            watch.cancel()  # workers still at it stop at once; nobody waits for them
             self.stats.seconds += time.perf_counter() - start
-        return bodies
-
-    def _fetch(self, url: str, stop: threading.Event, valid) -> Optional[bytes]:
-        delay = self.backoff_s
-        for attempt in range(self.retries + 1):
-            with self._lock:
-                if stop.is_set():
-                    raise RegistrationCanceled("Registration canceled; no outputs were written.")
-                if self.stats.requests >= self.max_requests:
-                    raise ServiceError(f"The map service at {host(url)} was sent the {self.max_requests} requests a "
-                                       "run may send (retries included): choose a smaller search area.")
-                self.stats.requests += 1
-            try:
-                body = self._request(url)
-            except _Retry as exc:
-                if attempt == self.retries:
-                    raise ServiceError(f"The map service at {host(url)} did not answer properly after "
-                                       f"{self.retries + 1} {'try' if self.retries == 0 else 'tries'}: {exc} "
-                                       f"({redact(url)}).") from None
-                stop.wait(delay)
-                delay *= 2
-                continue
-            with self._lock:
-                self.stats.bytes += len(body or b"")
-                self.stats.missing += body is None
-            if body is not None:
-                if valid is not None:
-                    valid(url, body)
-                self._store(url, body)
-            return body
-        return None  # not reached
-
-    def _request(self, url: str) -> Optional[bytes]:
-        """The body (None for a missing tile: HTTP 204 or 404, or an empty answer)."""
-        request = urllib.request.Request(url, headers={"User-Agent": f"Hamta/{__version__} (georeferencing)"})
-        try:
-            with urllib.request.urlopen(request, timeout=self.timeout_s) as answer:
-                body = answer.read()
-                return None if answer.status in MISSING_STATUS or not body else body
-        except urllib.error.HTTPError as exc:
-            if exc.code in MISSING_STATUS:
-                return None
-            if exc.code in RETRY_STATUS:
-                raise _Retry(f"HTTP {exc.code} {exc.reason}") from None
-            raise ServiceError(f"The map service at {host(url)} refused a request: HTTP {exc.code} {exc.reason} "
-                               f"({redact(url)}).") from None
-        except (socket.timeout, TimeoutError):
-            raise _Retry(f"no answer within {self.timeout_s:g} s") from None
-        except urllib.error.URLError as exc:
-            reason = exc.reason
-            if isinstance(reason, (socket.timeout, TimeoutError)):
-                raise _Retry(f"no answer within {self.timeout_s:g} s") from None
-            if isinstance(reason, ConnectionRefusedError):
-                raise ServiceError(f"The map service at {host(url)} cannot be reached: the connection was refused "
-                                   "(is the server running?).") from None
-            raise ServiceError(f"The map service at {host(url)} cannot be reached: {reason}.") from None
-        except (http.client.HTTPException, ConnectionError, OSError) as exc:  # a cut or garbled answer
-            raise _Retry(f"the answer was broken off or garbled ({type(exc).__name__})") from None
-
-    def _path(self, url: str) -> Optional[str]:
-        if not self.cache:
-            return None
-        digest = hashlib.sha256(url.encode()).hexdigest()
-        return os.path.join(self.cache, "http", digest[:2], digest)
-
-    def _cached(self, url: str) -> Optional[bytes]:
-        path = self._path(url)
-        if path is None or not os.path.isfile(path):
-            return None
-        with open(path, "rb") as f:
-            return f.read() or None
 
     def forget(self, url: str) -> None:
-        """Drop ``url``'s cached answer (one found unusable)."""
-        path = self._path(url)
-        if path is not None and os.path.isfile(path):
-            os.remove(path)
+        """Drop ``url``'s cached answer."""
+        if self.store is not None:
+            self.store.remove(self._path(url))
+
+    def _path(self, url: str) -> str:
+        digest = hashlib.sha256(url.encode()).hexdigest()
+        return os.path.join(self.store.root, "http", digest[:2], digest)
+
+    def _cached(self, url: str) -> Optional[bytes]:
+        return None if self.store is None else self.store.read(self._path(url), self.max_bytes)
 
     def _store(self, url: str, body: bytes) -> None:
-        path = self._path(url)
-        if path is not None:
-            write_whole(path, body)
+        if self.store is not None:
+            path = self._path(url)
+            try:
+                self.store.folder("http", os.path.basename(os.path.dirname(path)))
+            except Unusable as exc:
+                with self._lock:
+                    if self.store is not None:
+                        self.warnings.append(f"The cache folder '{self.store.root}' is not used: {exc}.")
+                    self.store = None
+                return
+            self.store.write(path, body)
+
+    def _count(self, url: str) -> None:
+        """Count one request, within the run's caps."""
+        with self._lock:
+            if self.stats.requests >= self.max_requests:
+                raise ServiceError(f"The map service at {host(url)} was sent the {self.max_requests} requests a "
+                                   "run may send (retries included): choose a smaller search area.")
+            self.stats.requests += 1
 
 
-def write_whole(path: str, data: bytes) -> None:
-    """Write ``data`` to ``path`` through a temporary name (a reader never sees part of it); a cache
-    that cannot be written only costs a later refetch."""
-    tmp = None
-    try:
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=os.path.dirname(path), suffix=".part")
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except OSError:
-        if tmp is not None and os.path.exists(tmp):
-            os.remove(tmp)
+class _Run:
+    """The shared state of one :meth:`Fetcher.each`: its workers take URLs until none is left, an error
+    ends the run, or the run is canceled."""
 
+    def __init__(self, fetcher: Fetcher, urls, decode, watch: http.Watch, tasks, results):
+        self.fetcher, self.urls, self.decode, self.watch = fetcher, urls, decode, watch
+        self.tasks, self.results = tasks, results
+        self.deadline = time.monotonic() + max(0.0, fetcher.budget_s - fetcher.stats.seconds)
 
-class _Retry(Exception):
-    """A failure worth retrying; its text says what happened."""
+    def work(self) -> None:
+        while not self.watch.canceled:
+            try:
+                i = self.tasks.get_nowait()
+            except queue.Empty:
+                return
+            try:
+                self.results.put((i, self.one(self.urls[i]), None))
+            except http.Canceled:
+                return
+            except BaseException as exc:  # handed to the caller's thread, which raises it
+                self.results.put((i, None, exc))
+                return
+
+    def one(self, url: str):
+        """The decoded answer for ``url`` (None for a missing tile): from the cache, or the network."""
+        f = self.fetcher
+        cached = f._cached(url)
+        if cached is not None:
+            try:
+                value = self.decode(url, cached)
+                with f._lock:
+                    f.stats.cache_hits += 1
+                return value
+            except BadAnswer:
+                f.forget(url)
+        delay = f.backoff_s
+        for attempt in range(f.retries + 1):
+            f._count(url)
+            try:
+                body = self.request(url)
+            except http.Failure as exc:
+                if not exc.retry:
+                    raise ServiceError(f"The map service at {host(url)} {exc} ({redact(url)}).") from None
+                if attempt == f.retries:
+                    tries = f"{f.retries + 1} {'try' if f.retries == 0 else 'tries'}"
+                    raise ServiceError(f"The map service at {host(url)} did not answer properly after {tries}: the "
+                                       f"last time it {exc} ({redact(url)}).") from None
+                self._pause(delay)
+                delay *= 2
+                continue
+            if body is None:
+                with f._lock:
+                    f.stats.missing += 1
+                return None
+            try:
+                value = self.decode(url, body)
+            except BadAnswer as exc:
+                raise ServiceError(f"The map service at {host(url)} {exc} ({redact(url)}).") from None
+            f._store(url, body)
+            return value
+        return None  # not reached
+
+    def request(self, url: str) -> Optional[bytes]:
+        """The body of a 2xx answer (None for a missing tile); raises :class:`http.Failure`."""
+        f = self.fetcher
+        left = self.deadline - time.monotonic()
+        if left <= 0:
+            raise ServiceError(f"The map service at {host(url)} took more than the {f.budget_s:g} s a run may spend "
+                               "fetching: choose a smaller search area or try again later.")
+        answer = http.get(url, self.watch, min(f.timeout_s, left), f.max_bytes)
+        with f._lock:
+            f.stats.bytes += len(answer.body)
+            if f.stats.bytes > f.max_run_bytes:
+                raise ServiceError(f"The map service at {host(url)} sent more than the {f.max_run_bytes >> 20} MB a "
+                                   "run may receive: choose a smaller search area.")
+        if answer.status in MISSING_STATUS or (answer.status == 200 and not answer.body and answer.complete):
+            return None
+        if answer.status in RETRY_STATUS or (200 <= answer.status < 300 and not answer.body):
+            raise http.Failure(f"answered HTTP {answer.status} {answer.reason}".strip(), retry=True)
+        if not 200 <= answer.status < 300:
+            raise http.Failure(f"refused a request: HTTP {answer.status} {answer.reason}".strip(), retry=False)
+        return answer.body
+
+    def _pause(self, seconds: float) -> None:
+        end = time.monotonic() + seconds
+        while not self.watch.canceled and time.monotonic() < end:
+            time.sleep(min(0.05, end - time.monotonic()))
+        if self.watch.canceled:
+            raise http.Canceled()
 
 
 def host(url: str) -> str:
     """The host (and port) of ``url``, without credentials."""
-    parts = urlsplit(url)
-    return parts.hostname + (f":{parts.port}" if parts.port else "") if parts.hostname else url
+    from urllib.parse import urlsplit
+
+    try:
+        parts = urlsplit(url)
+        return parts.hostname + (f":{parts.port}" if parts.port else "") if parts.hostname else redact(url)
+    except ValueError:
+        return redact(url)

@@ -1,25 +1,52 @@
-"""Secrets out of map-service addresses, for messages and reports (no network code here: every run
-imports this, few runs fetch tiles)."""
+"""Secrets out of map-service addresses, for messages, reports, logs and batch tables (no network code
+here: every run imports this, few runs fetch tiles)."""
 from __future__ import annotations
 
 import re
 from urllib.parse import parse_qsl, urlencode, urlsplit, urlunsplit
 
-SECRET_KEYS = frozenset((
-    "key", "token", "apikey", "api_key", "access_token", "access_key", "password", "passwd", "signature", "sig",
-    "x-amz-signature", "x-amz-credential", "x-amz-security-token", "app_code", "client_id", "client_secret",
-    "subscription-key"))
+# A query key naming a secret, in any case and with any separator: key, apikey, api-key, X-Api-Key,
+# access_token, client_secret, client_id, app_code, sig, X-Amz-Signature, X-Amz-Credential, password, pwd, authcfg…
+SECRET_KEY = re.compile(r"key|token|secret|sig|pass|pwd|credential|auth|session|app.?code|app.?id|client.?id",
+                        re.IGNORECASE)
+URL = re.compile(r"[A-Za-z][A-Za-z0-9+.-]*://[^\s'\"<>]+")
+HIDDEN = "***"
+
+
+def secret_key(name: str) -> bool:
+    """Whether a query key (or a QGIS source key) names a secret."""
+    return SECRET_KEY.search(name) is not None
 
 
 def redact(text: str) -> str:
-    """``text`` (a URL, or a GDAL string holding one: ``/vsicurl/https://…``, ``WMTS:https://…``) without
-    user name, password or key-like query values, for messages and reports; other text unchanged."""
-    found = re.search(r"(https?|ftp)://", text)
-    if found is None:
-        return text
-    prefix, url = text[:found.start()], text[found.start():]
-    parts = urlsplit(url)
-    netloc = (parts.hostname or "") + (f":{parts.port}" if parts.port else "")
-    query = [(k, "***" if k.lower() in SECRET_KEYS else v) for k, v in parse_qsl(parts.query, keep_blank_values=True)]
+    """``text`` with every address in it (``https://…``, also inside a GDAL string: ``/vsicurl/https://…``,
+    ``WMTS:https://…``) stripped of user name, password and secret-like query values; other text unchanged."""
+    return URL.sub(lambda found: _redact_url(found.group(0)), str(text))
+
+
+def _redact_url(url: str) -> str:
+    try:
+        parts = urlsplit(url)
+        port = parts.port
+    except ValueError:  # a malformed port or bracket: keep nothing after the scheme that could hold a secret
+        return url.split("://", 1)[0] + "://" + HIDDEN
+    netloc = (parts.hostname or "") + (f":{port}" if port else "")
+    if parts.hostname and ":" in parts.hostname:
+        netloc = f"[{parts.hostname}]" + (f":{port}" if port else "")
+    query = [(k, HIDDEN if secret_key(k) else v) for k, v in parse_qsl(parts.query, keep_blank_values=True)]
     text = urlunsplit((parts.scheme, netloc, parts.path, urlencode(query, safe="{}/,:*"), ""))
-    return prefix + text.replace("%7B", "{").replace("%7D", "}")
+    return text.replace("%7B", "{").replace("%7D", "}")
+
+
+def without_secrets_of(url: str, text: str) -> str:
+    """``text`` (a server's answer to ``url``) with the secret values of ``url`` hidden: a server may echo
+    the key it was sent ('invalid key: …')."""
+    try:
+        parts = urlsplit(url)
+        values = [v for k, v in parse_qsl(parts.query) if secret_key(k) and len(v) >= 4]
+        values += [v for v in (parts.username, parts.password) if v and len(v) >= 4]
+    except ValueError:
+        return text
+    for value in sorted(values, key=len, reverse=True):
+        text = text.replace(value, HIDDEN)
+    return redact(text)

@@ -9,15 +9,19 @@ from __future__ import annotations
 import hashlib
 import math
 import os
+import stat
 import tempfile
 from dataclasses import dataclass
+from functools import partial
 from typing import Tuple
 
 import numpy as np
+from rasterio.errors import RasterioError, RasterioIOError
 
 from ..errors import InputError
-from .fetch import Fetcher, ServiceError, host
-from .redact import redact
+from ..text import printable
+from .fetch import BadAnswer, Fetcher, ServiceError, host
+from .redact import without_secrets_of
 from .services import TileService
 
 Bounds = Tuple[float, float, float, float]  # xmin, ymin, xmax, ymax in the service's grid CRS
@@ -58,63 +62,106 @@ def tile_range(service: TileService, bounds: Bounds, z: int) -> TileRange:
 
 
 def fetch_area(service: TileService, tiles: TileRange, fetcher: Fetcher, folder: str, monitor=None) -> str:
-    """Fetch ``tiles`` and write them as one GeoTIFF in ``folder``; its path (reused when present)."""
+    """Fetch ``tiles`` and write them as one GeoTIFF in ``folder``; its path (reused when present and
+    readable). A tile that fails fails the area: an area with holes is never written as whole."""
     key = hashlib.sha256(f"{service}|{tiles}".encode()).hexdigest()[:24]
     path = os.path.join(folder, f"area-{key}.tif")
-    if os.path.isfile(path):
+    if _readable(path):
         fetcher.stats.cache_hits += tiles.count  # the area's tiles, from the cache as one file
         return path
     urls = [service.tile_url(tiles.z, x, y) for y in range(tiles.y0, tiles.y1 + 1)
             for x in range(tiles.x0, tiles.x1 + 1)]
-    bodies = fetcher.get_many(urls, monitor, valid=_image_like)
-    if all(b is None for b in bodies):
+    n, width = service.tile_px, tiles.x1 - tiles.x0 + 1
+    mosaic = np.zeros((4, (tiles.y1 - tiles.y0 + 1) * n, width * n), np.uint8)
+    found = 0
+    for i, tile in fetcher.each(urls, partial(decode_tile, n=n), monitor):
+        if tile is not None:
+            r, c = divmod(i, width)
+            mosaic[:, r * n:(r + 1) * n, c * n:(c + 1) * n] = tile
+            found += 1
+    if not found:
         raise NoTiles(f"The map service at {host(urls[0])} has no data in the search area: each of the "
                            f"{len(urls)} tiles of zoom {tiles.z} was answered 'HTTP 404 Not Found', 'HTTP 204 No "
                            "Content' or empty.")
-    n = service.tile_px
-    mosaic = np.zeros((4, (tiles.y1 - tiles.y0 + 1) * n, (tiles.x1 - tiles.x0 + 1) * n), np.uint8)
-    width = tiles.x1 - tiles.x0 + 1
-    for i, (url, body) in enumerate(zip(urls, bodies)):
-        if body is not None:
-            r, c = divmod(i, width)
-            mosaic[:, r * n:(r + 1) * n, c * n:(c + 1) * n] = _decode(body, n, url, fetcher)
     if not mosaic[3].any():
         raise NoTiles(f"The map service at {host(urls[0])} has no data in the search area: the {len(urls)} "
                            f"tiles of zoom {tiles.z} are fully transparent.")
-    _write(path, mosaic, service, tiles)
+    try:
+        _write(path, mosaic, service, tiles)
+    except (OSError, RasterioError) as exc:  # a full or failing cache disk: the area is kept for this run only
+        fetcher.warnings.append(f"The area read from the map service could not be kept in the cache ({exc}); a "
+                                "rerun fetches it again.")
+        path = os.path.join(tempfile.mkdtemp(prefix="hamta-area-"), os.path.basename(path))
+        _write(path, mosaic, service, tiles)
     return path
 
 
+def _readable(path: str) -> bool:
+    """Whether an area file kept earlier is there (a file, not a link) and opens; one that does not is removed."""
+    import rasterio
+
+    try:
+        if not stat.S_ISREG(os.lstat(path).st_mode):
+            os.unlink(path)
+            return False
+    except FileNotFoundError:
+        return False
+    try:
+        with rasterio.open(path) as ds:
+            return ds.count == 4
+    except (RasterioError, RasterioIOError):
+        os.unlink(path)
+        return False
+
+
 IMAGE_MAGIC = (b"\x89PNG", b"\xff\xd8\xff", b"GIF8", b"RIFF", b"II*\x00", b"MM\x00*")  # PNG JPEG GIF WebP TIFF
+MAX_TILE_SIDE = 4  # tiles larger than this many times the grid's tile side are refused before decoding
 
 
-def _image_like(url: str, body: bytes) -> None:
-    """Refuse (before it is cached) an answer that is not an image: the service's error message."""
-    if not body.startswith(IMAGE_MAGIC):
-        text = body[:200].decode("utf-8", "replace").strip().replace("\n", " ")
-        raise ServiceError(f"The map service at {host(url)} sent something that is not an image: '{text}'.")
-
-
-def _decode(body: bytes, n: int, url: str, fetcher: Fetcher) -> np.ndarray:
-    """A tile's (4, n, n) RGBA pixels; one that cannot be decoded is dropped from the cache."""
+def decode_tile(url: str, body: bytes, n: int) -> np.ndarray:
+    """A tile's (4, n, n) RGBA pixels. Raises :class:`BadAnswer` for an answer that is not an image (the
+    service's error message, made printable), one whose header declares more than ``MAX_TILE_SIDE`` × n
+    pixels a side (a decompression bomb: refused before decoding), or one that cannot be decoded."""
     import cv2
 
+    if not body.startswith(IMAGE_MAGIC):
+        text = body[:200].decode("utf-8", "replace").strip()
+        raise BadAnswer(f"sent something that is not an image: '{printable(without_secrets_of(url, text), 120)}'")
+    width, height = _declared_size(body)
+    if not (0 < width <= MAX_TILE_SIDE * n and 0 < height <= MAX_TILE_SIDE * n):
+        raise BadAnswer(f"sent an image of {width} x {height} px for a tile of {n} x {n} px")
     image = cv2.imdecode(np.frombuffer(body, np.uint8), cv2.IMREAD_UNCHANGED)
-    if image is None:
-        fetcher.forget(url)
-        raise ServiceError(f"The map service at {host(url)} sent an image that cannot be decoded ({len(body)} bytes, "
-                           f"{redact(url)}).")
+    if image is None or image.ndim not in (2, 3) or image.shape[0] * image.shape[1] > width * height:
+        raise BadAnswer(f"sent an image that cannot be decoded ({len(body)} bytes)")
     if image.dtype != np.uint8:
         image = (image / 257).astype(np.uint8) if image.dtype == np.uint16 else image.astype(np.uint8)
     if image.ndim == 2:
         image = np.dstack([image, image, image, np.full_like(image, 255)])
     elif image.shape[2] == 3:
         image = np.dstack([image[:, :, ::-1], np.full(image.shape[:2], 255, np.uint8)])
-    else:
+    elif image.shape[2] == 4:
         image = np.dstack([image[:, :, 2::-1], image[:, :, 3]])
+    else:
+        raise BadAnswer(f"sent an image of {image.shape[2]} bands")
     if image.shape[:2] != (n, n):
         image = cv2.resize(image, (n, n), interpolation=cv2.INTER_AREA)
     return np.moveaxis(image, 2, 0)
+
+
+def _declared_size(body: bytes):
+    """Width and height an image's header declares, read by GDAL without decoding its pixels."""
+    import warnings
+
+    from rasterio.errors import NotGeoreferencedWarning
+    from rasterio.io import MemoryFile
+
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", NotGeoreferencedWarning)
+            with MemoryFile(body) as memory, memory.open() as ds:
+                return ds.width, ds.height
+    except (RasterioError, RasterioIOError, ValueError):  # rasterio 1.3's IO error is not a RasterioError
+        raise BadAnswer(f"sent an image that cannot be decoded ({len(body)} bytes)") from None
 
 
 def _write(path: str, mosaic: np.ndarray, service: TileService, tiles: TileRange) -> None:

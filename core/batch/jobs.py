@@ -90,6 +90,9 @@ def _jobs(rows: list, base: str, out: str, reference: Optional[str], source: str
             raise InputError(f"Row {i} of {source} has no reference, and no --reference was given.")
         folder = outputs.get(i) or _unique(os.path.join(root, _stem(target)), used)
         used.add(folder)
+        if not _inside(os.path.realpath(folder), os.path.realpath(root)):
+            raise InputError(f"Row {i} of {source}: its output folder '{folder}' leads outside the output folder "
+                             f"'{root}' through a symbolic link; remove the link or choose another output.")
         extent = (row.get("extent") or "").strip() or None
         if extent is not None:
             try:

@@ -15,10 +15,13 @@ from typing import List
 
 import numpy as np
 
+from ..basemap.redact import redact
 from ..outputs.atomic import OutputSet
 from ..outputs.gpkg import add_feature_layer, add_srs, create_metadata, polygon_blob, srs_entry
+from ..text import printable
 
 LAYER = "pairs"
+MESSAGE_LIMIT = 2000  # characters of a pair's message in the table (one line: control characters escaped)
 FIELDS = [("name", "TEXT"), ("status", "TEXT"), ("verdict", "TEXT"), ("method", "TEXT"), ("method_used", "TEXT"),
           ("error_bound_px", "REAL"), ("rmse_px", "REAL"), ("n_gcps", "INTEGER"), ("time_s", "REAL"),
           ("resumed", "BOOLEAN"), ("message", "TEXT"), ("target", "TEXT"), ("reference", "TEXT"), ("out", "TEXT"),
@@ -37,8 +40,9 @@ def write_results(folder: str, records: List[dict]) -> dict:
 def _row(r: dict) -> list:
     outputs = r.get("outputs") or {}
     return [r["name"], r["status"], r.get("verdict"), r["method"], r.get("method_used"), r.get("error_bound_px"),
-            r.get("rmse_px"), r.get("n_gcps"), r["time_s"], int(bool(r.get("resumed"))), r.get("message") or "",
-            r["target"], r["reference"], r["out"], outputs.get("raster"), outputs.get("report")]
+            r.get("rmse_px"), r.get("n_gcps"), r["time_s"], int(bool(r.get("resumed"))),
+            printable(redact(r.get("message") or ""), MESSAGE_LIMIT), r["target"], redact(r["reference"]), r["out"],
+            outputs.get("raster"), outputs.get("report")]
 
 
 def _write_csv(path: str, records: List[dict]) -> None:

@@ -109,7 +109,9 @@ def test_tps_jacobian_is_the_derivative_of_the_spline(points):
     numeric = np.stack([(tps.apply(probe + d) - tps.apply(probe - d)) / (2 * h) for d in ([h, 0], [0, h])], axis=2)
     exact = tps.jacobian(probe, max_cells=len(src) * 7)
     assert np.allclose(exact, numeric, rtol=0, atol=1e-6)
-    assert np.array_equal(local_jacobian(tps, probe), tps.jacobian(probe))
+    # The same sums in other chunks: BLAS kernels may order them differently (AVX-512 against AVX2), so
+    # agreement to the last few bits, not equality.
+    assert np.allclose(local_jacobian(tps, probe), tps.jacobian(probe), rtol=1e-12, atol=1e-12)
 
 
 @pytest.mark.parametrize("kind", MODEL_CHOICES)

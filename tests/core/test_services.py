@@ -112,3 +112,27 @@ def test_a_search_area_in_metres_without_its_crs_is_explained(tmp_path):
     options = RegisterOptions(extent="-8900000,2400000,-8500000,2800000", target_georef="ignore")
     with pytest.raises(InputError, match="EPSG:3857"):
         register_remote(SOURCE, service, options, Monitor(), Fetcher(cache=str(tmp_path)))
+
+
+@pytest.mark.parametrize("key", ["api-key", "apiKey", "X-Api-Key", "access_token", "client_secret", "Signature",
+                                 "X-Amz-Credential", "PASSWORD", "pwd", "auth", "authcfg", "sig", "subscription-key"])
+def test_any_query_key_naming_a_secret_is_redacted_everywhere_in_a_text(key):
+    text = f"failed: /vsicurl/https://u:pw@h.example.org/{{z}}/{{x}}/{{y}}.png?layers=a&{key}=S3CR3T then http://x/?{key}=S3CR3T"
+    redacted = redact(text)
+    assert "S3CR3T" not in redacted and "pw@" not in redacted and "layers=a" in redacted and "{z}" in redacted
+    assert redacted.startswith("failed: /vsicurl/https://h.example.org/")
+
+
+def test_outside_text_is_printed_escaped_and_cut():
+    from hamta.core.text import printable, terminal_safe
+
+    hostile = "\x1b]0;title\x07\x1b[2J\rFAKE\u202e" + "x" * 500
+    shown = printable(hostile)
+    assert shown.isprintable() and shown.startswith("\\x1b]0;title\\x07") and shown.endswith("x…") and len(shown) < 240
+    assert terminal_safe("line\n\tnext\r\x1b[2J") == "line\n\tnext\r\\x1b[2J"
+
+
+@pytest.mark.parametrize("text", ["-1e308,-1e308,1e308,1e308", "nan,0,1,1", "0,0,inf,1", "0,0,2e10,1,EPSG:3857"])
+def test_a_search_area_beyond_any_map_is_refused_plainly(text):
+    with pytest.raises(ValueError, match="beyond any map"):
+        parse_extent(text)
