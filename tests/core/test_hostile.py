@@ -16,8 +16,9 @@ from hamta.core.basemap.tiles import decode_tile
 from hamta.core.errors import HamtaError
 from hamta.core.outputs import OutputPaths
 
-# Tight bounds so that a fault costs seconds: each request 1.5 s whole, one retry, 20 s of fetching a run.
-FAST = dict(timeout_s=1.5, retries=1, backoff_s=0.01, budget_s=20.0, max_bytes=4 << 20)
+# Tight bounds so that a fault costs seconds: one retry, 20 s of fetching a run, each request 0.6 s whole
+# (1.5 s where the run must get through: a loaded machine renders the good tiles).
+FAST = dict(retries=1, backoff_s=0.01, budget_s=20.0, max_bytes=4 << 20)
 # Faults a run gets through (a retry, a redirect to http, an odd but valid image): it must verify, hole-free.
 GETS_THROUGH = {"cut-headers-nth", "cut-body-nth", "reset-nth", "redirect-good", "flaky-503", "continue-100",
                 "http10-good", "small-tile", "grey-tile"}
@@ -46,7 +47,7 @@ def _files(folder):
 def test_a_hostile_server_gets_a_clear_error_or_a_whole_answer_never_a_leak(fault, kind, hostile, target, tmp_path):
     reference = hostile.xyz(fault) if kind == "xyz" else hostile.wms(fault)
     out, cache = tmp_path / "out", tmp_path / "cache"
-    fetcher = Fetcher(cache=str(cache), **FAST)
+    fetcher = Fetcher(cache=str(cache), timeout_s=1.5 if fault in GETS_THROUGH else 0.6, **FAST)
     start = time.monotonic()
     try:
         result, written = run(target.path, reference, OutputPaths.in_folder(str(out)), fetcher=fetcher)
@@ -77,7 +78,6 @@ def test_a_hostile_server_gets_a_clear_error_or_a_whole_answer_never_a_leak(faul
 @pytest.mark.parametrize("fault", ["drip-headers", "silent", "drip-body"])
 def test_ctrl_c_or_sigterm_ends_a_run_at_once_whatever_the_server_does(fault, signal_name, hostile, target,
                                                                         tmp_path):
-    import resource
     import signal
     import subprocess
     import sys
@@ -92,6 +92,8 @@ def test_ctrl_c_or_sigterm_ends_a_run_at_once_whatever_the_server_does(fault, si
         time.sleep(0.05)
     time.sleep(0.5)  # the answers are under way
     assert child.poll() is None, child.communicate()
+    with open(f"/proc/{child.pid}/status") as f:  # the run's own peak so far (its rusage would hold the parent's)
+        peak_kb = next(int(line.split()[1]) for line in f if line.startswith("VmHWM:"))
     sent = time.monotonic()
     child.send_signal(getattr(signal, signal_name))
     _, err = child.communicate(timeout=30)
@@ -100,4 +102,4 @@ def test_ctrl_c_or_sigterm_ends_a_run_at_once_whatever_the_server_does(fault, si
     print(f"{fault} {signal_name}: ended {took:.3f} s after the signal")
     assert took < 2.0, took  # the goal is 1 s; a loaded CI machine may need a little more to start the exit
     assert not (tmp_path / "out").exists() or not os.listdir(tmp_path / "out")
-    assert resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss < 1.5 * 2 ** 20  # kB: no answer piles up
+    assert peak_kb < 1.5 * 2 ** 20, peak_kb  # no answer piles up
