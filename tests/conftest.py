@@ -170,3 +170,12 @@ def raising_method():
     yield make
     for name in names:
         _REGISTRY.pop(name, None)
+
+
+@pytest.fixture(scope="session")
+def landsat_crop(landsat, tmp_path_factory):
+    """A 160 x 120 px window of the Landsat sample, georeferenced 100 m off (a case onto map services)."""
+    from hamta.bench.goals.basemap import georeferenced_target
+
+    path = str(tmp_path_factory.mktemp("georeferenced") / "target.tif")
+    return georeferenced_target(landsat, path, (230, 250, 160, 120), 1.0, offset_m=(80.0, -60.0))

@@ -84,13 +84,6 @@ class Cache:
             return None
         return data
 
-    def has(self, path: str) -> bool:
-        """Whether ``path`` is a regular file (not a link to one)."""
-        try:
-            return stat.S_ISREG(os.lstat(path).st_mode)
-        except OSError:
-            return False
-
     def write(self, path: str, data: bytes) -> bool:
         """Write ``data`` whole or not at all; False where it could not be written (a later run refetches)."""
         tmp = None

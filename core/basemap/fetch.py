@@ -19,13 +19,12 @@ import threading
 import time
 from dataclasses import dataclass, field
 from typing import Callable, Iterator, List, Optional, Sequence, Tuple
+from urllib.parse import urlsplit
 
 from ..errors import InputError
 from . import http
 from .cache import Cache, Unusable, default_cache
 from .redact import redact
-
-__all__ = ["Fetcher", "FetchStats", "ServiceError", "Unusable", "default_cache", "host"]
 
 RETRY_STATUS = (408, 425, 429, 500, 502, 503, 504)  # worth asking again after a pause
 MISSING_STATUS = (204, 404)  # a tile outside the layer's coverage: empty, not a failure
@@ -92,9 +91,15 @@ class Fetcher:
         try:
             return self.store.folder(name)
         except Unusable as exc:
-            self.warnings.append(f"The cache folder '{self.store.root}' is not used: {exc}.")
-            self.store, self.cache = None, None
+            self._give_up_cache(exc)
             return None
+
+    def _give_up_cache(self, exc: Unusable) -> None:
+        """Go on without the cache, saying why once."""
+        with self._lock:
+            if self.store is not None:
+                self.warnings.append(f"The cache folder '{self.store.root}' is not used: {exc}.")
+            self.store, self.cache = None, None
 
     def each(self, urls: Sequence[str], decode: Callable[[str, bytes], object], monitor=None
              ) -> Iterator[Tuple[int, Optional[object]]]:
@@ -132,28 +137,25 @@ class Fetcher:
 
     def forget(self, url: str) -> None:
         """Drop ``url``'s cached answer."""
-        if self.store is not None:
-            self.store.remove(self._path(url))
-
-    def _path(self, url: str) -> str:
-        digest = hashlib.sha256(url.encode()).hexdigest()
-        return os.path.join(self.store.root, "http", digest[:2], digest)
+        store = self.store  # read once: a worker may give the cache up meanwhile
+        if store is not None:
+            store.remove(_entry(store, url))
 
     def _cached(self, url: str) -> Optional[bytes]:
-        return None if self.store is None else self.store.read(self._path(url), self.max_bytes)
+        store = self.store
+        return None if store is None else store.read(_entry(store, url), self.max_bytes)
 
     def _store(self, url: str, body: bytes) -> None:
-        if self.store is not None:
-            path = self._path(url)
-            try:
-                self.store.folder("http", os.path.basename(os.path.dirname(path)))
-            except Unusable as exc:
-                with self._lock:
-                    if self.store is not None:
-                        self.warnings.append(f"The cache folder '{self.store.root}' is not used: {exc}.")
-                    self.store = None
-                return
-            self.store.write(path, body)
+        store = self.store
+        if store is None:
+            return
+        path = _entry(store, url)
+        try:
+            store.folder("http", os.path.basename(os.path.dirname(path)))
+        except Unusable as exc:
+            self._give_up_cache(exc)
+            return
+        store.write(path, body)
 
     def _count(self, url: str) -> None:
         """Count one request, within the run's caps."""
@@ -162,6 +164,12 @@ class Fetcher:
                 raise ServiceError(f"The map service at {host(url)} was sent the {self.max_requests} requests a "
                                    "run may send (retries included): choose a smaller search area.")
             self.stats.requests += 1
+
+
+def _entry(store: Cache, url: str) -> str:
+    """Where ``url``'s answer is kept: under a digest of the URL, in one of 256 folders."""
+    digest = hashlib.sha256(url.encode()).hexdigest()
+    return os.path.join(store.root, "http", digest[:2], digest)
 
 
 class _Run:
@@ -257,8 +265,6 @@ class _Run:
 
 def host(url: str) -> str:
     """The host (and port) of ``url``, without credentials."""
-    from urllib.parse import urlsplit
-
     try:
         parts = urlsplit(url)
         return parts.hostname + (f":{parts.port}" if parts.port else "") if parts.hostname else redact(url)

@@ -48,7 +48,8 @@ class Answer:
 
 class Watch:
     """The sockets of the requests in flight: each is shut down at its deadline, all of them on
-    :meth:`cancel`; a daemon thread keeps the time, so nothing waits on it at exit."""
+    :meth:`cancel`; a daemon thread keeps the time until the cancel that ends every fetch, so nothing
+    waits on it at exit."""
 
     def __init__(self):
         self._lock = threading.Condition()
@@ -88,7 +89,7 @@ class Watch:
 
     def _keep_time(self) -> None:
         with self._lock:
-            while True:
+            while not self.canceled:  # a cancel has shut every socket, and shuts any added later
                 now = time.monotonic()
                 for watched, deadline in list(self._open.items()):
                     if deadline <= now and watched not in self._expired:
@@ -160,7 +161,7 @@ def _once(url: str, watch: Watch, deadline: float, timeout_s: float, max_bytes: 
     except (Failure, Canceled):
         raise
     except (OSError, http.client.HTTPException, ValueError) as exc:
-        expired = any(watch.done(w) for w in held)
+        expired = any([watch.done(w) for w in held])  # every one released
         held.clear()
         if watch.canceled:
             raise Canceled() from None

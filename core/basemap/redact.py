@@ -30,9 +30,8 @@ def _redact_url(url: str) -> str:
         port = parts.port
     except ValueError:  # a malformed port or bracket: keep nothing after the scheme that could hold a secret
         return url.split("://", 1)[0] + "://" + HIDDEN
-    netloc = (parts.hostname or "") + (f":{port}" if port else "")
-    if parts.hostname and ":" in parts.hostname:
-        netloc = f"[{parts.hostname}]" + (f":{port}" if port else "")
+    name = parts.hostname or ""
+    netloc = (f"[{name}]" if ":" in name else name) + (f":{port}" if port else "")  # an IPv6 host in brackets
     query = [(k, HIDDEN if secret_key(k) else v) for k, v in parse_qsl(parts.query, keep_blank_values=True)]
     text = urlunsplit((parts.scheme, netloc, parts.path, urlencode(query, safe="{}/,:*"), ""))
     return text.replace("%7B", "{").replace("%7D", "}")

@@ -11,12 +11,14 @@ import math
 import os
 import stat
 import tempfile
+import warnings
 from dataclasses import dataclass
 from functools import partial
 from typing import Tuple
 
 import numpy as np
-from rasterio.errors import RasterioError, RasterioIOError
+from rasterio.errors import NotGeoreferencedWarning, RasterioError, RasterioIOError
+from rasterio.io import MemoryFile
 
 from ..errors import InputError
 from ..text import printable
@@ -150,11 +152,6 @@ def decode_tile(url: str, body: bytes, n: int) -> np.ndarray:
 
 def _declared_size(body: bytes):
     """Width and height an image's header declares, read by GDAL without decoding its pixels."""
-    import warnings
-
-    from rasterio.errors import NotGeoreferencedWarning
-    from rasterio.io import MemoryFile
-
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", NotGeoreferencedWarning)

@@ -7,7 +7,6 @@ import time
 
 import pytest
 
-from hamta.bench.goals.basemap import georeferenced_target
 from hamta.bench.hostile import FAULTS, SECRET, HostileServer
 from hamta.bench.tileserver import TileServer
 from hamta.core import run
@@ -32,25 +31,20 @@ def hostile(landsat):
     server.stop()
 
 
-@pytest.fixture(scope="module")
-def target(landsat, tmp_path_factory):
-    path = str(tmp_path_factory.mktemp("hostile") / "target.tif")
-    return georeferenced_target(landsat, path, (230, 250, 160, 120), 1.0, offset_m=(80.0, -60.0))
-
-
 def _files(folder):
     return [os.path.join(d, f) for d, _, files in os.walk(folder) for f in files]
 
 
 @pytest.mark.parametrize("kind", ["xyz", "wms"])
 @pytest.mark.parametrize("fault", FAULTS)
-def test_a_hostile_server_gets_a_clear_error_or_a_whole_answer_never_a_leak(fault, kind, hostile, target, tmp_path):
+def test_a_hostile_server_gets_a_clear_error_or_a_whole_answer_never_a_leak(fault, kind, hostile, landsat_crop,
+                                                                             tmp_path):
     reference = hostile.xyz(fault) if kind == "xyz" else hostile.wms(fault)
     out, cache = tmp_path / "out", tmp_path / "cache"
     fetcher = Fetcher(cache=str(cache), timeout_s=1.5 if fault in GETS_THROUGH else 0.6, **FAST)
     start = time.monotonic()
     try:
-        result, written = run(target.path, reference, OutputPaths.in_folder(str(out)), fetcher=fetcher)
+        result, written = run(landsat_crop.path, reference, OutputPaths.in_folder(str(out)), fetcher=fetcher)
         message = "\n".join(result.notes)
     except HamtaError as exc:  # anything else is an internal error, and fails the test
         result, message = None, str(exc)
@@ -76,7 +70,7 @@ def test_a_hostile_server_gets_a_clear_error_or_a_whole_answer_never_a_leak(faul
 
 @pytest.mark.parametrize("signal_name", ["SIGINT", "SIGTERM"])
 @pytest.mark.parametrize("fault", ["drip-headers", "silent", "drip-body"])
-def test_ctrl_c_or_sigterm_ends_a_run_at_once_whatever_the_server_does(fault, signal_name, hostile, target,
+def test_ctrl_c_or_sigterm_ends_a_run_at_once_whatever_the_server_does(fault, signal_name, hostile, landsat_crop,
                                                                         tmp_path):
     import signal
     import subprocess
@@ -84,7 +78,7 @@ def test_ctrl_c_or_sigterm_ends_a_run_at_once_whatever_the_server_does(fault, si
 
     env = dict(os.environ, HAMTA_CACHE=str(tmp_path / "cache"))
     before = hostile.requests
-    child = subprocess.Popen([sys.executable, "-P", "-m", "hamta.cli.main", "register", "--target", target.path,
+    child = subprocess.Popen([sys.executable, "-P", "-m", "hamta.cli.main", "register", "--target", landsat_crop.path,
                               "--reference", hostile.xyz(fault), "--out", str(tmp_path / "out")],
                              env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 60
