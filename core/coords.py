@@ -7,6 +7,7 @@ shift between the two lives here. Arrays of points are ``(N, 2)`` float64 named 
 """
 from __future__ import annotations
 
+import threading
 from typing import Optional
 
 import numpy as np
@@ -109,3 +110,26 @@ def continue_longitudes(xy: np.ndarray, centre: Optional[float]) -> np.ndarray:
     out = np.array(xy, dtype=np.float64)
     out[:, 0] += 360.0 * np.round((centre - out[:, 0]) / 360.0)
     return out
+
+
+def transformer(src, dst):
+    """A pyproj ``Transformer`` from ``src`` to ``dst`` (CRS objects or strings), x = easting or longitude.
+    Built once per pair and thread: building one costs a few milliseconds (a verification places
+    hundreds of points one site at a time), and pyproj's transformers are not shared across threads."""
+    cache = _transformers.__dict__.setdefault("by_pair", {})
+    key = (_crs_key(src), _crs_key(dst))
+    found = cache.get(key)
+    if found is None:
+        from pyproj import Transformer  # imported when needed: pixel-mode runs never are
+
+        if len(cache) >= 32:
+            cache.clear()
+        found = cache[key] = Transformer.from_crs(src, dst, always_xy=True)
+    return found
+
+
+def _crs_key(crs) -> str:
+    return crs if isinstance(crs, str) else crs.to_wkt()
+
+
+_transformers = threading.local()

@@ -16,6 +16,12 @@ REQUIRE_DATA = os.environ.get("HAMTA_REQUIRE_DATA") == "1"
 
 
 def pytest_configure(config):
+    import signal
+
+    # A shell starts background jobs with Ctrl-C ignored, and Python then installs no KeyboardInterrupt
+    # handler, in this process or in the runs it starts: the tests of interrupts need the usual one.
+    if signal.getsignal(signal.SIGINT) == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
     if REQUIRE_DATA and not (SHARED / "data").is_dir():
         raise pytest.UsageError(f"{MISSING_DATA}; HAMTA_REQUIRE_DATA=1 forbids skipping the tests that need it")
 

@@ -15,7 +15,7 @@ from typing import Optional
 import numpy as np
 from affine import Affine
 
-from ..coords import as_xy, continue_longitudes, gdal_coefficients, map_to_pixel, pixel_to_map
+from ..coords import as_xy, continue_longitudes, gdal_coefficients, map_to_pixel, pixel_to_map, transformer
 
 
 @dataclass(frozen=True, eq=False)
@@ -29,20 +29,15 @@ class CrsFrame:
     reference_centre: Optional[float] = None  # the central longitude of a geographic reference
     frame_centre: Optional[float] = None  # and of a geographic target frame
 
-    def _transformer(self, src: str, dst: str):
-        from pyproj import Transformer  # imported when needed: pixel-mode runs never are
-
-        return Transformer.from_crs(src, dst, always_xy=True)
-
     def to_reference_px(self, frame_px) -> np.ndarray:
         mp = pixel_to_map(self.frame_transform, as_xy(frame_px))
-        x, y = self._transformer(self.frame_crs_wkt, self.reference_crs_wkt).transform(mp[:, 0], mp[:, 1])
+        x, y = transformer(self.frame_crs_wkt, self.reference_crs_wkt).transform(mp[:, 0], mp[:, 1])
         return map_to_pixel(self.reference_transform, continue_longitudes(np.column_stack([x, y]),
                                                                           self.reference_centre))
 
     def from_reference_px(self, reference_px) -> np.ndarray:
         mp = pixel_to_map(self.reference_transform, as_xy(reference_px))
-        x, y = self._transformer(self.reference_crs_wkt, self.frame_crs_wkt).transform(mp[:, 0], mp[:, 1])
+        x, y = transformer(self.reference_crs_wkt, self.frame_crs_wkt).transform(mp[:, 0], mp[:, 1])
         return map_to_pixel(self.frame_transform, continue_longitudes(np.column_stack([x, y]), self.frame_centre))
 
     def to_frame_map(self, frame_px) -> np.ndarray:

@@ -23,7 +23,7 @@ from rasterio.warp import Resampling, reproject
 from rasterio.windows import Window
 from shapely.geometry import Polygon, box
 
-from ..coords import as_xy, compose, continue_longitudes, map_to_pixel, pixel_to_map, raster_outline
+from ..coords import as_xy, compose, continue_longitudes, map_to_pixel, pixel_to_map, raster_outline, transformer
 from ..errors import GeoreferencingError, InputError, NoOverlapError
 from ..options import TARGET_GEOREF
 from ..parallel import threaded
@@ -241,9 +241,7 @@ def footprint(info: RasterInfo, crs: Optional[CRS], points_per_side: int = 21,
 def _link(src: Optional[CRS], dst: Optional[CRS], centre: Optional[float] = None) -> Optional[MapLink]:
     if src is None or dst is None or src == dst:
         return None
-    from pyproj import Transformer  # imported when needed: pixel-mode runs never are
-
-    return MapLink(Transformer.from_crs(src, dst, always_xy=True), centre)
+    return MapLink(transformer(src, dst), centre)
 
 
 def central_longitude(info: RasterInfo) -> Optional[float]:
