@@ -7,8 +7,10 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
 - otherwise the search area (``RegisterOptions.extent``), searched coarse to fine: read at the zoom
   where its longer side is about 1024, 2048, then 4096 px (``AREA_SIDES``), the target is located by
   features voting for a pose (:mod:`hamta.core.matching.locate`: any rotation, scale and place; SIFT's
-  features, then, with the 'learned' extra, XFeat's where SIFT's best places did not verify); each
-  of the few places where most features agree has its footprint (plus ``LOCATED_MARGIN``) read at the
+  features, then, with the 'learned' extra, XFeat's where SIFT's best places did not verify) and by its
+  structure correlated at every turn and scale (:mod:`hamta.core.matching.structure`: each zoom the
+  target sides the coarser ones were too coarse for, so the finest finds targets 1/40 of the area's
+  side); each of the few places found has its footprint (plus ``LOCATED_MARGIN``) read at the
   zoom nearest the target's own pixels, and the target is registered there with that place as its
   prior, as if it had been georeferenced there. At the first zoom, before the places with few agreeing
   features, the whole area is registered once as well (the target assumed to cover ``AREA_SHARE`` of
@@ -38,7 +40,16 @@ from .errors import InputError, InsufficientMatchesError
 from .extent import bounds_in, parse_extent
 from .io.raster import open_raster, read_image
 from .io.working import footprint
-from .matching.places import CANDIDATES, MIN_INLIERS, candidates, learned_target_features, target_features
+from .matching.places import (
+    CANDIDATES,
+    MIN_INLIERS,
+    candidates,
+    learned_target_features,
+    seen,
+    structure_sides,
+    target_features,
+    target_image,
+)
 from .options import RegisterOptions
 from .pipeline import register
 from .progress import Monitor
@@ -149,6 +160,7 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     bounds = _search_bounds(options.extent, service)
     target, per_px = target_features(info, options.target_band)
     learned = learned_target_features(target[2], info, options.target_band)
+    grey, grey_valid = target_image(info, options.target_band, target[2])
     zooms = _search_zooms(service, bounds)
     deadline = time.monotonic() + options.auto_budget_s
 
@@ -169,7 +181,9 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
         image, valid = read_image(area, (1, 2, 3))
         _outside(valid, area.transform, bounds)
         tried = []
-        for j, (found_by, c) in enumerate(candidates(target, learned, image, valid, not whole_tried)):
+        side = max(bounds[2] - bounds[0], bounds[3] - bounds[1]) / service.resolution(z)
+        structure = grey, grey_valid, structure_sides(side, 2.0 ** (z - searched[-2]) if len(searched) > 1 else None)
+        for j, (found_by, c) in enumerate(candidates(target, learned, image, valid, not whole_tried, structure)):
             step = span.span(0.4 + 0.6 * j / STEPS_PER_ZOOM, 0.4 + 0.6 * min(j + 1, STEPS_PER_ZOOM) / STEPS_PER_ZOOM)
             if time.monotonic() > deadline:
                 notes.append(f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried")
@@ -179,10 +193,11 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
                 result, z_fine = _register_whole_area(info, reader, bounds, z, budgeted(), register_onto, step, notes)
             else:
                 placed = area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
-                if _seen(placed, info, places) or len(places) >= MAX_PLACES:
+                if seen(placed, info.width, info.height, places) or len(places) >= MAX_PLACES:
                     continue
                 places.append(placed)
-                tried.append(f"a place {found_by} features found ({c.inliers} agreeing)")
+                tried.append(f"a place {found_by} features found ({c.inliers} agreeing)" if c.inliers else
+                             f"a place the target's structure matched (score {c.score:.1f})")
                 result, z_fine = _register_placed(info, reader, placed, bounds, budgeted(), register_onto, step,
                                                   notes)
             if result is not None and (best is None or result_rank(result) > result_rank(best[0])):
@@ -206,8 +221,8 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     return best
 
 
-MAX_PLACES = 4  # places registered in all
-STEPS_PER_ZOOM = 2 * CANDIDATES + 1  # places of both features and the whole area: the progress bar's steps
+MAX_PLACES = 6  # places registered in all
+STEPS_PER_ZOOM = 3 * CANDIDATES + 1  # places of both features, of the structure and the whole area: progress steps
 SEARCH_TRIES = MAX_PLACES + 2  # registrations a search may check: the places and the whole area (coarse, then fine)
 AREA_SHARE = 7  # the share of the area's pixels a target is assumed to cover when the whole area is registered
 AREA_SIDES = (1024, 2048, 4096)  # px: the search area's longer side at each zoom searched, coarse to fine: the target
@@ -286,14 +301,6 @@ def _overlaps(result, info, bounds) -> bool:
                            result.model.apply(raster_outline(info.width, info.height, 9, ends=True)))
     polygon = Polygon(outline).buffer(0)
     return polygon.is_valid and polygon.intersects(box(*bounds))
-
-
-def _seen(placed, info, places) -> bool:
-    """Whether ``placed`` puts the target's centre within a quarter of its size of a place in ``places``."""
-    centre = (info.width / 2.0, info.height / 2.0)
-    size = math.hypot(info.width, info.height) * math.sqrt(abs(placed.determinant))
-    x, y = placed * centre
-    return any(math.hypot(x - px, y - py) < 0.25 * size for px, py in (p * centre for p in places))
 
 
 def _register_placed(info, reader: _Reader, placed, bounds, options: RegisterOptions, register_onto, monitor: Monitor,

@@ -43,6 +43,7 @@ class Candidate:
     matrix: np.ndarray
     inliers: int
     votes: int
+    score: float = 0.0  # a correlation's (structure_places), where there are no features to count
 
     @property
     def scale(self) -> float:
