@@ -30,12 +30,12 @@ lint: $(VENV)/.ok
 # Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL) and the
 # 'learned' extra.
 test-wheels: $(VENV)/.learned
-	$(VENV)/bin/python -P -m pytest tests/core -q -rs
+	$(VENV)/bin/python -P -m pytest tests/core -q -rs --durations=15
 
 # Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...);
 # the wheel build and the end-to-end benchmark run on the PyPI-wheels half only (make bench runs there).
 test-debian: $(QVENV)/.ok
-	$(QVENV)/bin/python -P -m pytest tests -q -rs -m "not packaging and not bench"
+	$(QVENV)/bin/python -P -m pytest tests -q -rs --durations=15 -m "not packaging and not bench"
 
 bench: $(VENV)/.ok
 	$(VENV)/bin/hamta bench

@@ -41,7 +41,7 @@ def advice(result) -> List[Advice]:
         tips.append(Advice("tolerance_px", math.ceil(bound * 10) / 10, "the estimated error is within the accuracy "
                            "asked for but its bound is not: ask for that accuracy if it is enough"))
     if options.get("model") in RIGID:
-        tips.append(Advice("model", "polynomial-2", f"a {options['model']} model may not follow the target's "
+        tips.append(Advice("model", "polynomial-2", f"the {options['model']} model may not follow the target's "
                            "distortion (a scanned sheet, terrain, a large footprint)"))
     if not options.get("local"):
         tips.append(Advice("local", True, "local misalignment may exceed what one model follows"))
