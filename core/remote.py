@@ -169,7 +169,11 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
         return dataclasses.replace(options, auto_budget_s=max(0.0, deadline - time.monotonic()))
 
     best, places, searched, whole_tried = None, [], [], False
+    spent = f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried"
     for i, z in enumerate(zooms):
+        if time.monotonic() > deadline:  # a finer zoom costs its tiles and its locating before any place
+            notes.extend([spent] if spent not in notes else [])
+            break
         span = monitor.span(i / len(zooms), (i + 1) / len(zooms))
         path = reader.read(bounds, z, span.span(0.0, 0.3))
         z = reader.zooms[-1]
@@ -186,7 +190,7 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
         for j, (found_by, c) in enumerate(candidates(target, learned, image, valid, not whole_tried, structure)):
             step = span.span(0.4 + 0.6 * j / STEPS_PER_ZOOM, 0.4 + 0.6 * min(j + 1, STEPS_PER_ZOOM) / STEPS_PER_ZOOM)
             if time.monotonic() > deadline:
-                notes.append(f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried")
+                notes.append(spent)
                 break
             if c is None:
                 whole_tried = True
