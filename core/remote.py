@@ -48,7 +48,6 @@ from .matching.places import (
     seen,
     structure_sides,
     target_features,
-    target_image,
 )
 from .options import RegisterOptions
 from .pipeline import register
@@ -158,9 +157,8 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     module docstring); the result and the zoom it was registered onto. ``notes`` get what was searched."""
     service = reader.service
     bounds = _search_bounds(options.extent, service)
-    target, per_px = target_features(info, options.target_band)
-    learned = learned_target_features(target[2], info, options.target_band)
-    grey, grey_valid = target_image(info, options.target_band, target[2])
+    target, per_px, (grey, grey_valid) = target_features(info, options.target_band)
+    learned = learned_target_features(grey, grey_valid)
     zooms = _search_zooms(service, bounds)
     deadline = time.monotonic() + options.auto_budget_s
 

@@ -172,11 +172,10 @@ def _relatable(a: Optional[CRS], b: Optional[CRS]) -> bool:
     """Whether PROJ can transform coordinates between two CRSs (a local engineering CRS cannot)."""
     if a is None or b is None or a == b:
         return True
-    from pyproj import Transformer
     from pyproj.exceptions import CRSError, ProjError
 
     try:
-        Transformer.from_crs(a, b, always_xy=True)
+        transformer(a, b)  # kept: the run transforms between them next
     except (ProjError, CRSError):
         return False
     return True

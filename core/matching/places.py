@@ -39,24 +39,25 @@ LEARNED_AREA_K = 2048
 
 
 def target_features(info, band):
-    """The target's locating features: (keypoints, descriptors, working shape) and working px per target px."""
+    """The target's locating features: (keypoints, descriptors, working shape), working px per target px,
+    and the (grey image, validity) at that working shape they come from."""
     per_px = min(1.0, TARGET_SIDE / max(info.width, info.height))
     shape = (max(1, round(info.height * per_px)), max(1, round(info.width * per_px)))
     image, valid = read_image(info, resolve_bands(info, band), None, shape)
     per_px = shape[1] / info.width
-    return (*features(image, valid), shape), per_px
+    return (*features(image, valid), shape), per_px, (image, valid)
 
 
-def learned_target_features(shape, info, band):
-    """A function giving the target's XFeat features at each turn and scale of :data:`LEARNED_TURNS_DEG` and
-    :data:`LEARNED_SCALES` (computed on first use: most searches SIFT settles), or None without the extra."""
+def learned_target_features(image, valid):
+    """A function giving the XFeat features of the target's working ``image`` at each turn and scale of
+    :data:`LEARNED_TURNS_DEG` and :data:`LEARNED_SCALES` (computed on first use: most searches SIFT settles),
+    or None without the extra."""
     if not xfeat.available():
         return None
     cache = []
 
     def turned():
         if not cache:
-            image, valid = read_image(info, resolve_bands(info, band), None, shape)
             cache.extend(xfeat.turned_features(image, valid, a, s, LEARNED_TARGET_K) for s in LEARNED_SCALES
                          for a in LEARNED_TURNS_DEG)
         return cache
@@ -70,11 +71,6 @@ def structure_sides(area_side: float, finer_by=None):
     if finer_by is None:
         return STRUCTURE_MIN_SIDE, area_side / 1.5
     return STRUCTURE_MIN_SIDE, STRUCTURE_MIN_SIDE * finer_by
-
-
-def target_image(info, band, shape):
-    """The target's grey image and validity at its locating working ``shape``."""
-    return read_image(info, resolve_bands(info, band), None, shape)
 
 
 def candidates(target, learned, image, valid, whole: bool, structure=None):

@@ -108,13 +108,14 @@ def channels(grey: np.ndarray, valid: np.ndarray) -> tuple:
     lower = np.floor(position)
     upper_share = position - lower
     lower = lower.astype(np.int8) % BINS
+    upper = (lower + 1) % BINS
     inside = cv2.erode(valid.astype(np.uint8), np.ones((5, 5), np.uint8)) > 0
     magnitude *= inside
+    to_lower, to_upper = magnitude * (1.0 - upper_share), magnitude * upper_share
     h, w = grey.shape[0] // 2, grey.shape[1] // 2
     out = np.empty((BINS, h, w), np.float32)
     for k in range(BINS):
-        energy = magnitude * np.where(lower == k, 1.0 - upper_share, 0.0) + magnitude * np.where(
-            lower == (k - 1) % BINS, upper_share, 0.0)
+        energy = np.where(lower == k, to_lower, 0.0) + np.where(upper == k, to_upper, 0.0)
         out[k] = cv2.resize(energy[:2 * h, :2 * w], (w, h), interpolation=cv2.INTER_AREA)
     np.sqrt(out, out=out)
     out /= np.sqrt((out ** 2).sum(axis=0)) + np.float32(1e-3 * (float(out.max()) + 1e-6))
