@@ -14,6 +14,8 @@ from typing import Optional
 
 import rasterio
 
+from ..memory import return_freed_memory
+
 
 class RunFiles:
     """Descriptions and open datasets by file (see :func:`file_key`), each dataset with its lock (a GDAL
@@ -48,6 +50,7 @@ def run_scope():
     if current() is not None:
         yield current()
         return
+    return_freed_memory()
     files = RunFiles()
     token = _CURRENT.set(files)
     try:
