@@ -27,9 +27,16 @@ from typing import Callable, List, Mapping, Optional
 from .errors import DeadlineReached, InsufficientMatchesError, method_crashes
 from .outcome import Attempt, AutoRun
 from .progress import Monitor
-from .verify import corroborate, corroborating, result_rank
+from .verify import corroborate, corroborating, error_bound, result_rank
 
 AUTO = "auto"
+
+
+# A verified result whose check bounds its error above this (reference px) lets the next precise steps try
+# to do better; the one with the smaller bound is kept. On NAIP pairs five to seven years apart, the shift
+# verified with bounds of 0.46-1.93 px (errors 0.29-1.66 px) where xmodal's bounds were 0.33-0.91 px
+# (errors 0.18-0.57 px).
+PRECISE_PX = 0.5
 
 
 @dataclass(frozen=True)
@@ -37,17 +44,20 @@ class Step:
     """One method ``auto`` may try, with its parameters, what it is for, and its refinement when the
     user leaves it on 'auto' ('on': SIFT keypoints are located to a few hundredths of a pixel; full-
     resolution correlation around them makes the result three to five times more accurate for a
-    few tenths of a second, measured on the rotation family)."""
+    few tenths of a second, measured on the rotation family). ``precise``: a step worth trying after a
+    verified result whose bound exceeds :data:`PRECISE_PX` (fast, and as accurate as any)."""
 
     method: str
     params: Mapping[str, object]
     why: str
     refine: str = "auto"
+    precise: bool = False
 
 
 CHAIN = (
-    Step("sift", {}, "fast; the same sensor or similar images, any rotation and scale", refine="on"),
-    Step("xmodal", {}, "across modalities (SAR, infrared, depth, maps, night lights), any rotation, scale 1/2-2"),
+    Step("sift", {}, "fast; the same sensor or similar images, any rotation and scale", refine="on", precise=True),
+    Step("xmodal", {}, "across modalities (SAR, infrared, depth, maps, night lights), any rotation, scale 1/2-2",
+         precise=True),
     Step("cfog", {}, "across modalities, target roughly north-up: dense structural search"),
     Step("ndsift-pc", {}, "SAR onto SAR: speckle-robust features, any rotation"),
     Step("cfog", {"max_rotation_deg": 180.0}, "across modalities at any rotation, dense (slow)"),
@@ -60,11 +70,13 @@ def chain_for(plan_mode: str, short: bool = False):
     """The steps for a plan: the shift first when the target's georeferencing placed it; the learned
     matcher after ``xmodal`` when its extra is installed (before it, XFeat's answers were kept on 6 of 54
     real multimodal pairs that ``xmodal`` registers more accurately, and it cost time on every pair).
-    ``short``: up to the north-up structural search only (a
+    ``short``: up to the north-up structural search only, and the first verified result taken (a
     basemap search's places, where a wrong place must cost little, and the same work on any machine: the
-    SAR matcher and the all-rotation dense search after it are for gaps a basemap seldom has)."""
+    SAR matcher and the all-rotation dense search after it are for gaps a basemap seldom has; trying to
+    beat a verified place's bound would cost every place the precise matchers' time again)."""
     prior = plan_mode == "georeferenced"
-    return ((SHIFT_STEP,) if prior else ()) + CHAIN[:2] + learned_steps(prior) + CHAIN[2:3 if short else None]
+    chain = ((SHIFT_STEP,) if prior else ()) + CHAIN[:2] + learned_steps(prior) + CHAIN[2:3 if short else None]
+    return tuple(dataclasses.replace(step, precise=False) for step in chain) if short else chain
 
 
 def learned_steps(prior: bool) -> tuple:
@@ -75,11 +87,13 @@ def learned_steps(prior: bool) -> tuple:
     if not available():
         return ()
     return (Step("xfeat", {} if prior else {"max_rotation_deg": 180.0},
-                 "optical images years apart: learned features (the 'learned' extra)", refine="on"),)
+                 "optical images years apart: learned features (the 'learned' extra)", refine="on", precise=True),)
 
 
 def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
-    """Try ``chain``'s steps in order; return the first verified result, else the best one.
+    """Try ``chain``'s steps in order; return the first verified result whose error bound is within
+    :data:`PRECISE_PX`, else the verified result with the smallest bound (the precise steps after the first
+    verified result try to beat it), else the best unverified one.
 
     ``options.auto_budget_s`` is a deadline: once spent, the running step is stopped (at its next
     progress report) and no further step starts. The first step is exempt, so that a budget shorter
@@ -99,6 +113,8 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
         if elapsed > options.auto_budget_s:
             attempts.append(tried(step, "skipped", spent))
             continue
+        if best is not None and best.verified and not step.precise:
+            break
         t0 = time.perf_counter()
         step_monitor = monitor.span(i / len(chain), (i + 1) / len(chain))
         if i:
@@ -120,9 +136,11 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
             attempts[-1] = dataclasses.replace(attempts[-1], outcome="verified",
                                                reason=_first_line(result.verification.corroboration["summary"]))
         found.append(result)
-        if best is None or result_rank(result) > result_rank(best):
+        if best is not None and best.verified and result.verified:
+            attempts[-1] = dataclasses.replace(attempts[-1], reason=compared(result, best))
+        if better(result, best):
             best, chosen = result, len(attempts) - 1
-        if result.verified:
+        if best.verified and bound(best) <= PRECISE_PX:
             break
     monitor.report(1.0, "registered")
     if best is None:
@@ -131,6 +149,27 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
                 f"{a.method}: {a.reason}" for a in attempts) + ").", 0, 1)
     timings = dataclasses.replace(best.timings, auto_total=round(time.perf_counter() - start, 4))
     return dataclasses.replace(best, auto=AutoRun.of(attempts, chosen), timings=timings)
+
+
+def bound(result) -> float:
+    """The check's bound on the result's error, reference px (infinite where it gave none)."""
+    return error_bound(result.verification)
+
+
+def better(result, best) -> bool:
+    """Whether ``result`` is to be returned rather than ``best``: of two verified results the one the check
+    bounds more tightly (never the fit's own residuals), else the better verdict and support."""
+    if best is None:
+        return True
+    if result.verified and best.verified:
+        return bound(result) < bound(best)
+    return result_rank(result) > result_rank(best)
+
+
+def compared(result, best) -> str:
+    """Why a verified result after ``best`` (verified) is kept or not, in the attempts list."""
+    verb = "kept" if better(result, best) else "not kept"
+    return (f"verified, error bound {bound(result):.2f} px against {best.method}'s {bound(best):.2f} px: {verb}")
 
 
 def tried(step: Step, outcome: str, reason: str, t0: Optional[float] = None) -> Attempt:

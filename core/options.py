@@ -83,6 +83,7 @@ GRID = Choice("grid", {
     "auto": "Automatic",
     "reference": "Reference pixel grid",
     "native": "Target's native resolution",
+    "target": "Target's own pixels, georeferencing moved (a shift; no resampling)",
 }, "auto")
 
 REFINE = Choice("refine", {
@@ -335,8 +336,9 @@ class OutputOptions:
     resampling: str = option(RESAMPLING.default, "Resampling", "resampling of the warped output", advanced=False,
                              choice=RESAMPLING)
     grid: str = option(
-        GRID.default, "Output pixel grid", "output pixel grid: the reference's, the target's own resolution, or "
-        "auto (the reference's when the resolutions are within 10 %)", choice=GRID)
+        GRID.default, "Output pixel grid", "output pixel grid: the reference's, the target's own resolution, "
+        "auto (the reference's when the resolutions are within 10 %), or target: the target's pixels unchanged under "
+        "a corrected geotransform (where the model is a shift and scale, in the reference CRS)", choice=GRID)
     resolution: Optional[float] = option(
         None, "Output pixel size (output CRS units)", "output pixel size in output CRS units (overrides the grid's)",
         minimum=0, above=True, unset="from the pixel grid")

@@ -29,7 +29,7 @@ from .progress import Clock, Monitor
 from .refine import refine_estimate
 from .result import RegistrationResult, make_gcps, make_stats, params_dict
 from .types import Correspondences
-from .verify import VerifyParams, verify
+from .verify import VERDICT_RANK, VerifyParams, error_bound, verify
 
 
 @run_scope()
@@ -169,13 +169,18 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
     fit = final_fit(options.model, estimate, options.max_gcps, crs_frame(inputs.plan, inputs.target, inputs.reference))
     clock.lap("fit")
     grid = None
+    check = VerifyParams(tolerance_px=options.tolerance_px)
+    verification = None
     if options.local:
-        fit, grid = local_correction(estimate, inputs.target, inputs.target_bands, inputs.reference,
-                                     inputs.reference_bands, local_params(options, spec.refinement.similarity),
-                                     spec.refinement.similarity, monitor.span(0.85, 0.93), map_chunks)
+        local_fit, grid = local_correction(estimate, inputs.target, inputs.target_bands, inputs.reference,
+                                           inputs.reference_bands, local_params(options, spec.refinement.similarity),
+                                           spec.refinement.similarity, monitor.span(0.85, 0.9), map_chunks)
         clock.lap("local")
-    verification = verify(fit.model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands,
-                          VerifyParams(tolerance_px=options.tolerance_px), monitor.span(0.93, 1.0))
+        fit, grid, verification, note = keep_local(fit, local_fit, grid, inputs, check, monitor.span(0.9, 1.0))
+        notes += [note] if note else []
+    if verification is None:
+        verification = verify(fit.model, inputs.target, inputs.target_bands, inputs.reference,
+                              inputs.reference_bands, check, monitor.span(0.93, 1.0))
     clock.lap("verify")
     ref_info = inputs.reference
     to_map = (lambda xy: xy) if not ref_info.georeferenced else (lambda xy: pixel_to_map(ref_info.transform, xy))
@@ -186,6 +191,24 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
         stats=make_stats(matches, first.points, fit), timings=timings, notes=list(inputs.plan.notes) + notes,
         diagnostics=dict(matches.diagnostics or {}), correspondences=first.points, verification=verification,
         local=grid)
+
+
+def keep_local(global_fit, local_fit, grid, inputs: Inputs, check: VerifyParams, monitor: Monitor):
+    """(fit, grid, verification, note): the local correction, unless the check bounds the global model's
+    error more tightly (a flat field, a shift: the spline would only add the windows' noise); then the global
+    model, the grid None and a note saying why."""
+    def verified(fit, mon):
+        return verify(fit.model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands,
+                      check, mon)
+
+    local = verified(local_fit, monitor.span(0.0, 0.5))
+    whole = verified(global_fit, monitor.span(0.5, 1.0))
+    if VERDICT_RANK[local.verdict] > VERDICT_RANK[whole.verdict] or (
+            local.verdict == whole.verdict and error_bound(local) <= error_bound(whole)):
+        return local_fit, grid, local, None
+    return global_fit, None, whole, (
+        f"local correction not kept: the check bounds the global model's error at {error_bound(whole):.2f} px, the "
+        f"local correction's at {error_bound(local):.2f} px ({local.verdict})")
 
 
 def local_params(options: RegisterOptions, similarity: str) -> LocalParams:

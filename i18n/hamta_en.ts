@@ -19,77 +19,57 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="73"/>
+        <location filename="../plugin/action.py" line="97"/>
         <source>Auto-georeference of &apos;{}&apos; canceled; nothing was added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="77"/>
+        <location filename="../plugin/action.py" line="102"/>
         <source>Open the GCPs in the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="83"/>
+        <location filename="../plugin/action.py" line="107"/>
         <source>&apos;{}&apos; was registered, but the independent check did not confirm it ({}). No georeferenced raster was written; see the report, or tick &apos;Keep unverified result&apos; to write it anyway.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="88"/>
+        <location filename="../plugin/action.py" line="112"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="97"/>
+        <location filename="../plugin/action.py" line="121"/>
         <source>{} (georeferenced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="98"/>
+        <location filename="../plugin/action.py" line="122"/>
         <source>{} GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="103"/>
+        <location filename="../plugin/action.py" line="127"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="109"/>
-        <source>, error within {:.2f} px</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="110"/>
-        <source>&apos;{}&apos; is georeferenced, {} GCPs, and verified by an independent check: {} of {} sites agree{}.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="112"/>
-        <source>&apos;{}&apos; is georeferenced but NOT VERIFIED ({}); check it before use.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="112"/>
-        <source>not checked</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="117"/>
+        <location filename="../plugin/action.py" line="150"/>
         <source>Open report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="126"/>
+        <location filename="../plugin/action.py" line="159"/>
         <source>In the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="126"/>
+        <location filename="../plugin/action.py" line="159"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="127"/>
+        <location filename="../plugin/action.py" line="160"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -173,6 +153,61 @@
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation type="unfinished"></translation>
     </message>
+    <message>
+        <location filename="../plugin/action.py" line="71"/>
+        <source>Auto-georeference &apos;{}&apos;: starting</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="76"/>
+        <source>Cancel</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="84"/>
+        <source>Auto-georeference &apos;{}&apos;: {}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="101"/>
+        <source>Details</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="141"/>
+        <source> (error within {:.1f} px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="142"/>
+        <source>&apos;{}&apos; is georeferenced and verified{}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="143"/>
+        <source>&apos;{}&apos; is georeferenced but NOT VERIFIED; check it before use.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="187"/>
+        <source>&apos;{}&apos; onto &apos;{}&apos;</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="190"/>
+        <source>Independent check: {}; {} of {} sites agree; error bound {} px (tolerance {:g} px)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="193"/>
+        <source>Method: {}; {} GCPs; transformation: {}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="196"/>
+        <source>Time: {:.1f} s</source>
+        <translation type="unfinished"></translation>
+    </message>
 </context>
 <context>
     <name>AutoGeoreference</name>
@@ -250,7 +285,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="146"/>
+        <location filename="../processing/batch_algorithm.py" line="147"/>
         <source>Batch stopped on an unexpected error ({}: {}).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -277,7 +312,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="119"/>
+        <location filename="../processing/batch_algorithm.py" line="120"/>
         <source>The reference layer &apos;{}&apos; ({}) cannot be read by every pair of a batch: use a raster file, an XYZ or WMS layer, or save the layer&apos;s area as a GeoTIFF first.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -541,27 +576,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="214"/>
+        <location filename="core_strings.py" line="220"/>
         <source>Register raster (SIFT baseline)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="137"/>
+        <location filename="core_strings.py" line="138"/>
         <source>Register satellite image (RILBP, rotation-invariant)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="150"/>
+        <location filename="core_strings.py" line="156"/>
         <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="115"/>
+        <location filename="core_strings.py" line="116"/>
         <source>Register SAR image onto SAR image (ND-SIFT + phase congruency)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="101"/>
+        <location filename="core_strings.py" line="102"/>
         <source>Register SAR image onto optical image</source>
         <translation type="unfinished"></translation>
     </message>
@@ -601,607 +636,607 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="162"/>
+        <location filename="core_strings.py" line="168"/>
         <source>Register across modalities at any rotation and scale</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="180"/>
+        <location filename="core_strings.py" line="186"/>
         <source>What the SAR (target) raster holds: amplitude, intensity or db.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="181"/>
+        <location filename="core_strings.py" line="187"/>
         <source>Lee speckle filter on the SAR image (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="182"/>
+        <location filename="core_strings.py" line="188"/>
         <source>Lee window side, px (not given; 7).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="183"/>
+        <location filename="core_strings.py" line="189"/>
         <source>Equivalent number of looks of the SAR image (not given; 1).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="184"/>
+        <location filename="core_strings.py" line="190"/>
         <source>GGS window shape alpha (Shui &amp; Cheng&apos;s practical setting).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="185"/>
+        <location filename="core_strings.py" line="191"/>
         <source>GGS window width beta, px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="186"/>
+        <location filename="core_strings.py" line="192"/>
         <source>GGS window length sigma_x, px (l_f = 13).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="187"/>
+        <location filename="core_strings.py" line="193"/>
         <source>GGS orientations P (not given; 8).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="188"/>
+        <location filename="core_strings.py" line="194"/>
         <source>Hysteresis low threshold on 1 - ratio (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="189"/>
+        <location filename="core_strings.py" line="195"/>
         <source>Hysteresis high threshold on 1 - ratio (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="190"/>
+        <location filename="core_strings.py" line="196"/>
         <source>Edge components smaller than this are removed (the thesis: 65).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="191"/>
+        <location filename="core_strings.py" line="197"/>
         <source>Radon peaks taken before clustering (not given; 40).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="192"/>
+        <location filename="core_strings.py" line="198"/>
         <source>Radon angle step, degrees (MATLAB&apos;s default 1).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="193"/>
+        <location filename="core_strings.py" line="199"/>
         <source>Fewest edge pixels on a line; 0 = Sui et al.&apos;s 15 px per 256 px of image side.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="194"/>
+        <location filename="core_strings.py" line="200"/>
         <source>Lines closer than this in angle ... (not given; 5).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="195"/>
+        <location filename="core_strings.py" line="201"/>
         <source>... and this in offset are one line (not given; 10).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="196"/>
+        <location filename="core_strings.py" line="202"/>
         <source>Line pairs crossing at less than this are not intersected (Sui et al.).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="220"/>
+        <location filename="core_strings.py" line="226"/>
         <source>Eigenvector matching, VSPM, or their fusion (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="198"/>
+        <location filename="core_strings.py" line="204"/>
         <source>Fusion rule (not given): score-level sum, or cascade (VSPM&apos;s proximity inside eigenvector matching).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="199"/>
+        <location filename="core_strings.py" line="205"/>
         <source>Weight of the eigenvector score in the score-level fusion.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="200"/>
+        <location filename="core_strings.py" line="206"/>
         <source>Eigenvector proximity sigma as a fraction of each point set&apos;s RMS spread (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="201"/>
+        <location filename="core_strings.py" line="207"/>
         <source>VSPM proximity matrix: as printed (eq. 2-73), laplacian or gaussian.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="202"/>
+        <location filename="core_strings.py" line="208"/>
         <source>Crossing angles of matched intersections differ by less (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="197"/>
+        <location filename="core_strings.py" line="203"/>
         <source>Shapiro-Brady eigenvector matching alone (the thesis&apos;s baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="203"/>
+        <location filename="core_strings.py" line="209"/>
         <source>VSPM alone (the thesis&apos;s baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="103"/>
+        <location filename="core_strings.py" line="104"/>
         <source>What the target raster holds when it is SAR: amplitude, intensity or db (other images: leave amplitude).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="104"/>
+        <location filename="core_strings.py" line="105"/>
         <source>No Lee filter: CFOG&apos;s smoothing already averages speckle, and the filter measured no gain (multimodal proxy 8/8 either way; real pairs 0.85 vs 1.06 px median).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="105"/>
+        <location filename="core_strings.py" line="106"/>
         <source>Coarse transform: exhaustive CFOG search (default: it registers where the thesis&apos;s 5-8 matches cannot) or the thesis&apos;s lines.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="106"/>
+        <location filename="core_strings.py" line="107"/>
         <source>Rotations searched, +- degrees (georeferenced targets arrive north-up, so rotation is small).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="107"/>
+        <location filename="core_strings.py" line="108"/>
         <source>Scales searched, 1/max_scale .. max_scale (2 registers the scale family&apos;s 0.5-2, 10/10 against 6/10 for 1.5, for 26 % more time on a 1000 px pair).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="108"/>
+        <location filename="core_strings.py" line="109"/>
         <source>Longest reference side at the first search level, px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="109"/>
+        <location filename="core_strings.py" line="110"/>
         <source>The search compares descriptors minus their local mean over this many first-level px: with the global mean (0) regional orientation statistics favoured wrong axis-aligned candidates (overlap family 8/10; 3 px: 10/10, 6 px: 9/10).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="110"/>
+        <location filename="core_strings.py" line="111"/>
         <source>Side of the CFOG templates, working px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="111"/>
+        <location filename="core_strings.py" line="112"/>
         <source>Search radius of the first dense pass, working px (covers the coarse error).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="112"/>
+        <location filename="core_strings.py" line="113"/>
         <source>Weakest accepted template correlation; RANSAC removes the rest.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="113"/>
+        <location filename="core_strings.py" line="114"/>
         <source>Templates per dense pass.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="114"/>
+        <location filename="core_strings.py" line="115"/>
         <source>Coarse candidates checked by dense matching when the best is not convincing.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="117"/>
+        <location filename="core_strings.py" line="118"/>
         <source>What the SAR raster holds: amplitude, intensity or db (complex is read as amplitude).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="118"/>
+        <location filename="core_strings.py" line="119"/>
         <source>Scale space: nonlinear (the paper), gaussian or bilateral (baselines).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="119"/>
+        <location filename="core_strings.py" line="120"/>
         <source>Run on log amplitude, where speckle is additive and of one strength everywhere (not in the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="120"/>
+        <location filename="core_strings.py" line="121"/>
         <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does: on 1-look speckle it turns 3 of 24 failures into successes (the paper starts from the original image).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="121"/>
+        <location filename="core_strings.py" line="122"/>
         <source>Octaves O (the paper: 4).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="122"/>
+        <location filename="core_strings.py" line="123"/>
         <source>Sub-levels S per octave (the paper: 3; S + 3 images per octave).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="123"/>
+        <location filename="core_strings.py" line="124"/>
         <source>Base scale sigma_0 (gap; Lowe&apos;s 1.6).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="124"/>
+        <location filename="core_strings.py" line="125"/>
         <source>ROEWA exponential weight alpha (gap; SAR-SIFT&apos;s 2).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="125"/>
+        <location filename="core_strings.py" line="126"/>
         <source>Contrast factor K = this percentile of the ROEWA gradient (gap; KAZE&apos;s 70).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="126"/>
+        <location filename="core_strings.py" line="127"/>
         <source>K is multiplied by this at each new octave (the paper: &apos;change K&apos;; AKAZE&apos;s 0.75).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="127"/>
+        <location filename="core_strings.py" line="128"/>
         <source>Gradient inside the conductance: roewa (the paper) or difference.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="128"/>
+        <location filename="core_strings.py" line="129"/>
         <source>DoG contrast threshold on the [0, 1] amplitude (gap; Lowe&apos;s 0.03).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="129"/>
+        <location filename="core_strings.py" line="130"/>
         <source>DoG edge ratio r (Lowe&apos;s 10).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="130"/>
+        <location filename="core_strings.py" line="131"/>
         <source>Drop keypoints whose phase congruency is below pc_threshold (the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="131"/>
+        <location filename="core_strings.py" line="132"/>
         <source>Phase congruency threshold (the paper: 0.01).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="132"/>
+        <location filename="core_strings.py" line="133"/>
         <source>Kovesi&apos;s noise multiplier k (gap; his default 2).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="133"/>
+        <location filename="core_strings.py" line="134"/>
         <source>Range sigma of the bilateral scale space on the [0, 1] amplitude (BFSIFT baseline; not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="134"/>
+        <location filename="core_strings.py" line="135"/>
         <source>Ignore keypoints of the finest octave (BFSIFT does).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="135"/>
+        <location filename="core_strings.py" line="136"/>
         <source>Nearest/second-nearest ratio (the paper: 0.8).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="136"/>
+        <location filename="core_strings.py" line="137"/>
         <source>One-way ratio test: dual ratio matching keeps too few matches on 1-look speckle, and RANSAC removes the extra outliers (the paper: dual-ratio).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="173"/>
+        <location filename="core_strings.py" line="179"/>
         <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does (the paper starts from the original image).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="176"/>
+        <location filename="core_strings.py" line="182"/>
         <source>Dual matching: both directions pass the ratio test (the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="204"/>
+        <location filename="core_strings.py" line="210"/>
         <source>NDSS+SIFT: the paper&apos;s ablation without phase congruency.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="178"/>
+        <location filename="core_strings.py" line="184"/>
         <source>Gaussian scale space (the paper&apos;s SIFT baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="179"/>
+        <location filename="core_strings.py" line="185"/>
         <source>No phase congruency in the baseline.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="172"/>
+        <location filename="core_strings.py" line="178"/>
         <source>Bilateral-filter scale space (BFSIFT).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="174"/>
+        <location filename="core_strings.py" line="180"/>
         <source>No phase congruency in BFSIFT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="175"/>
+        <location filename="core_strings.py" line="181"/>
         <source>BFSIFT skips the finest scale.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="205"/>
+        <location filename="core_strings.py" line="211"/>
         <source>Strongest keypoints kept per image.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="206"/>
+        <location filename="core_strings.py" line="212"/>
         <source>FAST corner threshold (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="207"/>
+        <location filename="core_strings.py" line="213"/>
         <source>Pyramid levels, scale factor 1.2 (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="208"/>
+        <location filename="core_strings.py" line="214"/>
         <source>Nearest/second-nearest Hamming distance ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="145"/>
+        <location filename="core_strings.py" line="146"/>
         <source>Cross-check of matches: none, mutual or dual-ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="209"/>
+        <location filename="core_strings.py" line="215"/>
         <source>Strongest SIFT keypoints kept per image (0 = all).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="210"/>
+        <location filename="core_strings.py" line="216"/>
         <source>Nearest/second-nearest distance ratio (as the SIFT baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="211"/>
+        <location filename="core_strings.py" line="217"/>
         <source>Correspondences per side of the grid that carries the shift.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="212"/>
+        <location filename="core_strings.py" line="218"/>
         <source>Lowest accepted normalised correlation peak.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="213"/>
+        <location filename="core_strings.py" line="219"/>
         <source>Strongest FAST corners kept per image (RIFT: 5000).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="139"/>
+        <location filename="core_strings.py" line="140"/>
         <source>Strongest CenSurE keypoints kept per image (the paper: 2500).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="140"/>
+        <location filename="core_strings.py" line="141"/>
         <source>Smallest |CenSurE response| in grey levels (gap: paper uses CenSurE defaults without values).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="141"/>
+        <location filename="core_strings.py" line="142"/>
         <source>CenSurE&apos;s edge test limit on trace^2/det (Agrawal et al. 2008).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="142"/>
+        <location filename="core_strings.py" line="143"/>
         <source>Region radius = factor x half the outer octagon (gap in the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="143"/>
+        <location filename="core_strings.py" line="144"/>
         <source>Product: quadratic sub-pixel keypoint positions (CenSurE keeps whole pixels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="144"/>
+        <location filename="core_strings.py" line="145"/>
         <source>Nearest/second-nearest distance ratio (gap: the paper&apos;s rule is not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="146"/>
+        <location filename="core_strings.py" line="147"/>
         <source>LBP neighbour radius in region pixels (gap; the paper&apos;s figure shows 1; 2 keeps codes stable under keypoint and resampling jitter).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="147"/>
+        <location filename="core_strings.py" line="148"/>
         <source>Product: Gaussian sigma (region pixels) before coding; the paper has none, and radius-1 codes on raw pixels flip on sensor noise.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="148"/>
+        <location filename="core_strings.py" line="149"/>
         <source>CS-LBP threshold T in grey levels (gap; 0 = exact gain/offset invariance).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="149"/>
+        <location filename="core_strings.py" line="150"/>
         <source>Ring weight: literal 1-(d/h)^2 (the paper) or border 1-(2d/h)^2.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="221"/>
+        <location filename="core_strings.py" line="227"/>
         <source>Faithful: whole-pixel CenSurE positions, as the paper.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="222"/>
+        <location filename="core_strings.py" line="228"/>
         <source>Faithful: radius 1, the paper&apos;s Fig. 1.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="223"/>
+        <location filename="core_strings.py" line="229"/>
         <source>Faithful: no smoothing, as the paper.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="177"/>
+        <location filename="core_strings.py" line="183"/>
         <source>Faithful: whole-pixel CenSurE positions, as in the paper&apos;s comparison.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="152"/>
+        <location filename="core_strings.py" line="158"/>
         <source>Sobel magnitude threshold T (0..255; gap in the paper, default from a sweep).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="153"/>
+        <location filename="core_strings.py" line="159"/>
         <source>Hamming distance under which a keypoint with a near-duplicate in its own image is removed (gap; from a sweep).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="154"/>
+        <location filename="core_strings.py" line="160"/>
         <source>Gradient magnitude: l1 = 0.5|Gx|+0.5|Gy| (OpenCV tutorial, the spec&apos;s reading) or l2 = sqrt(Gx^2+Gy^2)/sqrt(2), which does not change with edge direction.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="155"/>
+        <location filename="core_strings.py" line="161"/>
         <source>to-zero keeps magnitudes above T (the paper); soft subtracts T, so the edge image has no jumps at the threshold for the DoG to fire on.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="156"/>
+        <location filename="core_strings.py" line="162"/>
         <source>Resolution at which the DoG pyramid starts (2 = OpenCV SIFT&apos;s upsampled base, the paper&apos;s; 1 = full resolution, 4x less work).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="157"/>
+        <location filename="core_strings.py" line="163"/>
         <source>Strongest DoG keypoints kept per image (0 = all, as the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="158"/>
+        <location filename="core_strings.py" line="164"/>
         <source>SIFT DoG contrast threshold on the edge image (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="159"/>
+        <location filename="core_strings.py" line="165"/>
         <source>Describe each keypoint on the pyramid level matching its SIFT size (the paper uses a fixed 31-px patch, which breaks beyond ~1.5x scale).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="160"/>
+        <location filename="core_strings.py" line="166"/>
         <source>Lowe ratio on Hamming distances (1 = off, as the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="161"/>
+        <location filename="core_strings.py" line="167"/>
         <source>Spec Appendix B (not in the paper): keep matches at the peaks of the angle and log-scale difference histograms.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="224"/>
+        <location filename="core_strings.py" line="230"/>
         <source>Faithful: OpenCV tutorial magnitude 0.5|Gx|+0.5|Gy|.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="225"/>
+        <location filename="core_strings.py" line="231"/>
         <source>Faithful: threshold-to-zero.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="226"/>
+        <location filename="core_strings.py" line="232"/>
         <source>Faithful: OpenCV SIFT as is (upsampled base).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="227"/>
+        <location filename="core_strings.py" line="233"/>
         <source>Faithful: every DoG keypoint.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="228"/>
+        <location filename="core_strings.py" line="234"/>
         <source>Faithful: one 31-px patch at full resolution for every keypoint.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="229"/>
+        <location filename="core_strings.py" line="235"/>
         <source>Faithful: mutual nearest neighbours without a ratio test.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="216"/>
+        <location filename="core_strings.py" line="222"/>
         <source>Strongest keypoints kept per image (0 = all).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="217"/>
+        <location filename="core_strings.py" line="223"/>
         <source>DoG contrast threshold (OpenCV default, Lowe 2004).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="218"/>
+        <location filename="core_strings.py" line="224"/>
         <source>Edge-response ratio limit (Lowe 2004).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="219"/>
+        <location filename="core_strings.py" line="225"/>
         <source>Lowe&apos;s nearest/second-nearest distance ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="164"/>
+        <location filename="core_strings.py" line="170"/>
         <source>Longest reference side for feature extraction, px: enough detail for RIFT features, and their cost.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="165"/>
+        <location filename="core_strings.py" line="171"/>
         <source>Pyramid levels (factors 2^-k/2) per image; 3 covers scales 1/2 to 2.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="166"/>
+        <location filename="core_strings.py" line="172"/>
         <source>Keypoints kept at the first level (0.7 and 0.5 times that at the next two).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="167"/>
+        <location filename="core_strings.py" line="173"/>
         <source>Rotation-scale hypotheses checked densely (10 gave nothing more).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="168"/>
+        <location filename="core_strings.py" line="174"/>
         <source>Hypotheses refined by local RIFT (5 gave nothing more).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="169"/>
+        <location filename="core_strings.py" line="175"/>
         <source>Longest reference side for the dense check, px: keeps its 30 FFT trials per hypothesis cheap; where CFOG separated right from wrong poses best.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="170"/>
+        <location filename="core_strings.py" line="176"/>
         <source>Longest reference side for local RIFT matching, px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="171"/>
+        <location filename="core_strings.py" line="177"/>
         <source>Fewest local-RIFT inliers for a refined hypothesis.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="83"/>
+        <location filename="core_strings.py" line="84"/>
         <source>Output CRS (empty: the reference&apos;s)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="86"/>
+        <location filename="core_strings.py" line="87"/>
         <source>Output format</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="94"/>
+        <location filename="core_strings.py" line="95"/>
         <source>Pixels outside the target</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1226,37 +1261,37 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="89"/>
+        <location filename="core_strings.py" line="90"/>
         <source>GeoTIFF (tiled, compressed)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="91"/>
+        <location filename="core_strings.py" line="92"/>
         <source>Warped VRT (no pixels copied)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="97"/>
+        <location filename="core_strings.py" line="98"/>
         <source>Alpha band</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="98"/>
+        <location filename="core_strings.py" line="99"/>
         <source>Nodata value</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="88"/>
+        <location filename="core_strings.py" line="89"/>
         <source>From the file name (.vrt or GeoTIFF)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="90"/>
+        <location filename="core_strings.py" line="91"/>
         <source>Cloud-optimised GeoTIFF</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="96"/>
+        <location filename="core_strings.py" line="97"/>
         <source>Automatic (nodata, NaN or an alpha band)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1321,7 +1356,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="306"/>
+        <location filename="../processing/register_algorithm.py" line="308"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1341,12 +1376,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="80"/>
+        <location filename="core_strings.py" line="81"/>
         <source>Output pixel size (output CRS units)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="92"/>
+        <location filename="core_strings.py" line="93"/>
         <source>GDAL creation options</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1482,71 +1517,71 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     </message>
     <message>
         <location filename="core_strings.py" line="76"/>
-        <source>output pixel grid: the reference&apos;s, the target&apos;s own resolution, or auto (the reference&apos;s when the resolutions are within 10 %)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="core_strings.py" line="81"/>
-        <source>output pixel size in output CRS units (overrides the grid&apos;s)</source>
+        <source>output pixel grid: the reference&apos;s, the target&apos;s own resolution, auto (the reference&apos;s when the resolutions are within 10 %), or target: the target&apos;s pixels unchanged under a corrected geotransform (where the model is a shift and scale, in the reference CRS)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="core_strings.py" line="82"/>
+        <source>output pixel size in output CRS units (overrides the grid&apos;s)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="83"/>
         <source>from the pixel grid</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="84"/>
+        <location filename="core_strings.py" line="85"/>
         <source>output CRS: EPSG:code, WKT or PROJ string</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="85"/>
+        <location filename="core_strings.py" line="86"/>
         <source>the reference&apos;s CRS</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="93"/>
+        <location filename="core_strings.py" line="94"/>
         <source>GDAL creation options of the warped raster, KEY=VALUE (e.g. COMPRESS=ZSTD, PREDICTOR=2), added to and overriding Hamta&apos;s defaults for the format</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="99"/>
+        <location filename="core_strings.py" line="100"/>
         <source>nodata value with fill &apos;nodata&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="100"/>
+        <location filename="core_strings.py" line="101"/>
         <source>the target&apos;s, else 0</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="215"/>
+        <location filename="core_strings.py" line="221"/>
         <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="102"/>
+        <location filename="core_strings.py" line="103"/>
         <source>Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale (up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method &apos;lines-spectral-faithful&apos; is the thesis&apos;s line-intersection matcher as written (Radon lines, eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="116"/>
+        <location filename="core_strings.py" line="117"/>
         <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="138"/>
+        <location filename="core_strings.py" line="139"/>
         <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="151"/>
+        <location filename="core_strings.py" line="157"/>
         <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="163"/>
+        <location filename="core_strings.py" line="169"/>
         <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1581,17 +1616,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="87"/>
+        <location filename="core_strings.py" line="88"/>
         <source>warped raster: gtiff (tiled, DEFLATE), cog (cloud-optimised, with overviews) or vrt (a warped VRT reading the target, written as registered.vrt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="95"/>
+        <location filename="core_strings.py" line="96"/>
         <source>how pixels outside the target are marked: auto (the target&apos;s nodata or collar value, NaN for floats, else an alpha band, so valid zeros stay valid), alpha, or nodata</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/options.py" line="54"/>
+        <location filename="../processing/options.py" line="59"/>
         <source>empty</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1623,6 +1658,46 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/register_algorithm.py" line="302"/>
         <source>May help: {} ({}).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="80"/>
+        <source>Target&apos;s own pixels, georeferencing moved (a shift; no resampling)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="151"/>
+        <source>Windows per side of the grid over the overlap.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="154"/>
+        <source>Share of a window&apos;s pixels that must be valid in both images.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="155"/>
+        <source>Lowest accepted phase-correlation peak of a window.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="236"/>
+        <source>Strongest keypoints kept per image (XFeat&apos;s default).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="237"/>
+        <source>Cosine similarity a mutual nearest neighbour needs (XFeat&apos;s default).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="238"/>
+        <source>Turns of the target tried, either way, in steps of 45 degrees: 0 when the target is upright on the reference (resampled onto it by its georeferencing), 180 for any rotation.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="239"/>
+        <source>Both images are matched shrunk alike to at most this many pixels each: XFeat describes at an eighth of the resolution it is given, and the full-resolution refinement restores the precision (four times faster than at the 4 Mpx working size).</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -19,77 +19,77 @@
         <translation>زمین‌مرجع‌سازی خودکار «{}»</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="73"/>
+        <location filename="../plugin/action.py" line="97"/>
         <source>Auto-georeference of &apos;{}&apos; canceled; nothing was added.</source>
         <translation>زمین‌مرجع‌سازی خودکار «{}» لغو شد؛ چیزی افزوده نشد.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="77"/>
+        <location filename="../plugin/action.py" line="102"/>
         <source>Open the GCPs in the Georeferencer</source>
         <translation>باز کردن نقاط کنترل در زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="83"/>
+        <location filename="../plugin/action.py" line="107"/>
         <source>&apos;{}&apos; was registered, but the independent check did not confirm it ({}). No georeferenced raster was written; see the report, or tick &apos;Keep unverified result&apos; to write it anyway.</source>
         <translation>«{}» ثبت شد، اما بررسی مستقل آن را تأیید نکرد ({}). رستر زمین‌مرجع نوشته نشد؛ گزارش را ببینید، یا «نگه داشتن نتیجهٔ تأییدنشده» را بزنید تا به هر حال نوشته شود.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="88"/>
+        <location filename="../plugin/action.py" line="112"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation>همتا با خطایی پیش‌بینی‌نشده متوقف شد ({}: {})؛ چیزی افزوده نشد. لطفاً آن را گزارش کنید (جزئیات در گزارش پیام‌ها است).</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="97"/>
+        <location filename="../plugin/action.py" line="121"/>
         <source>{} (georeferenced)</source>
         <translation>{} (زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="98"/>
+        <location filename="../plugin/action.py" line="122"/>
         <source>{} GCPs</source>
         <translation>نقاط کنترل {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="103"/>
+        <location filename="../plugin/action.py" line="127"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation>خروجی «{}» بارگذاری نشد.</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="109"/>
         <source>, error within {:.2f} px</source>
-        <translation>، خطا کمتر از {:.2f} پیکسل</translation>
+        <translation type="obsolete">، خطا کمتر از {:.2f} پیکسل</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="110"/>
         <source>&apos;{}&apos; is georeferenced, {} GCPs, and verified by an independent check: {} of {} sites agree{}.</source>
-        <translation>«{}» زمین‌مرجع شد، {} نقطهٔ کنترل، و بررسی مستقل آن را تأیید کرد: {} از {} محل موافق‌اند{}.</translation>
+        <translation type="obsolete">«{}» زمین‌مرجع شد، {} نقطهٔ کنترل، و بررسی مستقل آن را تأیید کرد: {} از {} محل موافق‌اند{}.</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="112"/>
         <source>&apos;{}&apos; is georeferenced but NOT VERIFIED ({}); check it before use.</source>
-        <translation>«{}» زمین‌مرجع شد اما تأیید نشد ({})؛ پیش از استفاده آن را بررسی کنید.</translation>
+        <translation type="obsolete">«{}» زمین‌مرجع شد اما تأیید نشد ({})؛ پیش از استفاده آن را بررسی کنید.</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="112"/>
         <source>not checked</source>
-        <translation>بررسی نشده</translation>
+        <translation type="obsolete">بررسی نشده</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="117"/>
+        <location filename="../plugin/action.py" line="150"/>
         <source>Open report</source>
         <translation>باز کردن گزارش</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="126"/>
+        <location filename="../plugin/action.py" line="159"/>
         <source>In the Georeferencer</source>
         <translation>در زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="126"/>
+        <location filename="../plugin/action.py" line="159"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation>در رستر ◂ زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="127"/>
+        <location filename="../plugin/action.py" line="160"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation>{}، رستر «{}» را باز کنید (پرونده ◂ باز کردن رستر…)، سپس پرونده ◂ بارگذاری نقاط کنترل… و مسیر پروندهٔ نقاط کنترل را که اکنون در حافظهٔ موقت است بچسبانید: {}</translation>
     </message>
@@ -173,6 +173,61 @@
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation>«{}» زمین‌مرجع ندارد: محدودهٔ جست‌وجو را روشن کنید (به‌طور پیش‌فرض محدودهٔ بوم نقشه) تا همتا بداند در «{}» کجا را بجوید.</translation>
     </message>
+    <message>
+        <location filename="../plugin/action.py" line="71"/>
+        <source>Auto-georeference &apos;{}&apos;: starting</source>
+        <translation>زمین‌مرجع‌سازی خودکار &apos;{}&apos;: آغاز</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="76"/>
+        <source>Cancel</source>
+        <translation>لغو</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="84"/>
+        <source>Auto-georeference &apos;{}&apos;: {}</source>
+        <translation>زمین‌مرجع‌سازی خودکار &apos;{}&apos;: {}</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="101"/>
+        <source>Details</source>
+        <translation>جزئیات</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="141"/>
+        <source> (error within {:.1f} px)</source>
+        <translation> (خطا حداکثر {:.1f} پیکسل)</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="142"/>
+        <source>&apos;{}&apos; is georeferenced and verified{}.</source>
+        <translation>&apos;{}&apos; زمین‌مرجع شد و درستی آن تأیید شد{}.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="143"/>
+        <source>&apos;{}&apos; is georeferenced but NOT VERIFIED; check it before use.</source>
+        <translation>&apos;{}&apos; زمین‌مرجع شد اما تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="187"/>
+        <source>&apos;{}&apos; onto &apos;{}&apos;</source>
+        <translation>&apos;{}&apos; روی &apos;{}&apos;</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="190"/>
+        <source>Independent check: {}; {} of {} sites agree; error bound {} px (tolerance {:g} px)</source>
+        <translation>بررسی مستقل: {}؛ {} از {} محل موافق‌اند؛ کران خطا {} پیکسل (رواداری {:g} پیکسل)</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="193"/>
+        <source>Method: {}; {} GCPs; transformation: {}</source>
+        <translation>روش: {}؛ {} نقطهٔ کنترل زمینی؛ تبدیل: {}</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="196"/>
+        <source>Time: {:.1f} s</source>
+        <translation>زمان: {:.1f} ثانیه</translation>
+    </message>
 </context>
 <context>
     <name>AutoGeoreference</name>
@@ -250,7 +305,7 @@
         <translation>رسترهای هدف و یک رستر مرجع، یا یک فهرست کار را انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="146"/>
+        <location filename="../processing/batch_algorithm.py" line="147"/>
         <source>Batch stopped on an unexpected error ({}: {}).</source>
         <translation>اجرای دسته با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {}).</translation>
     </message>
@@ -279,7 +334,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>زمان‌بند Dask (tls://host:port)</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="119"/>
+        <location filename="../processing/batch_algorithm.py" line="120"/>
         <source>The reference layer &apos;{}&apos; ({}) cannot be read by every pair of a batch: use a raster file, an XYZ or WMS layer, or save the layer&apos;s area as a GeoTIFF first.</source>
         <translation>لایهٔ مرجع «{}» ({}) را همهٔ جفت‌های یک دسته نمی‌توانند بخوانند: یک پروندهٔ رستری یا لایهٔ XYZ یا WMS به کار ببرید، یا نخست محدودهٔ لایه را به‌صورت GeoTIFF ذخیره کنید.</translation>
     </message>
@@ -543,27 +598,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>ثبت تصویر لغو شد؛ هیچ خروجی‌ای نوشته نشد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="214"/>
+        <location filename="core_strings.py" line="220"/>
         <source>Register raster (SIFT baseline)</source>
         <translation>ثبت رستر (پایه SIFT)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="137"/>
+        <location filename="core_strings.py" line="138"/>
         <source>Register satellite image (RILBP, rotation-invariant)</source>
         <translation>ثبت تصویر ماهواره‌ای (RILBP، مستقل از دوران)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="150"/>
+        <location filename="core_strings.py" line="156"/>
         <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
         <translation>ثبت تصویر هوایی روی تصویر ماهواره‌ای (SIBRIF، سریع)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="115"/>
+        <location filename="core_strings.py" line="116"/>
         <source>Register SAR image onto SAR image (ND-SIFT + phase congruency)</source>
         <translation>ثبت تصویر SAR روی تصویر SAR (ND-SIFT + همدوسی فاز)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="101"/>
+        <location filename="core_strings.py" line="102"/>
         <source>Register SAR image onto optical image</source>
         <translation>ثبت تصویر SAR روی تصویر نوری</translation>
     </message>
@@ -603,607 +658,607 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>رستر هدف را روی رستر مرجع ثبت می‌کند و روش را خودش برمی‌گزیند: ابتدا تناظریاب سریع SIFT، سپس تناظریاب‌های ویژهٔ تصاویر با مدالیتهٔ متفاوت (SAR، فروسرخ، نقشه) و ویژهٔ SAR، تا جایی که نتیجه‌ای از یک بررسی مستقل سربلند بیرون آید. این بررسی دو رستر را در محل‌هایی پراکنده در سراسر ناحیهٔ همپوشانی مقایسه می‌کند، نه روی تطابق‌هایی که مدل با آن‌ها برازش شده است، حاصل را با آنچه هم‌ترازی‌های نادرستِ همین رسترها به دست می‌دهند می‌سنجد و برای خطای باقی‌مانده کران تعیین می‌کند. نتیجه‌ای که تأیید نشود نوشته نمی‌شود، مگر اینکه گزینهٔ «نگه‌داشتن نتایج تأییدنشده» فعال باشد؛ گزارش اجرا همهٔ روش‌های آزموده‌شده را همراه با رأی و زمان هر کدام فهرست می‌کند. هر یک از دیگر الگوریتم‌های این گروه فقط یک روش را اجرا می‌کند و برای کاربران متخصص است.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="162"/>
+        <location filename="core_strings.py" line="168"/>
         <source>Register across modalities at any rotation and scale</source>
         <translation>ثبت میان مدالیته‌های مختلف با هر دوران و مقیاس</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="180"/>
+        <location filename="core_strings.py" line="186"/>
         <source>What the SAR (target) raster holds: amplitude, intensity or db.</source>
         <translation>نوع مقادیر رستر SAR (هدف): دامنه (amplitude)، شدت (intensity) یا دسی‌بل (db).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="181"/>
+        <location filename="core_strings.py" line="187"/>
         <source>Lee speckle filter on the SAR image (the thesis).</source>
         <translation>فیلتر اسپکل لی روی تصویر SAR (طبق پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="182"/>
+        <location filename="core_strings.py" line="188"/>
         <source>Lee window side, px (not given; 7).</source>
         <translation>اندازهٔ ضلع پنجرهٔ لی، px (ذکر نشده؛ ۷).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="183"/>
+        <location filename="core_strings.py" line="189"/>
         <source>Equivalent number of looks of the SAR image (not given; 1).</source>
         <translation>تعداد نگاه معادل تصویر SAR (ذکر نشده؛ ۱).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="184"/>
+        <location filename="core_strings.py" line="190"/>
         <source>GGS window shape alpha (Shui &amp; Cheng&apos;s practical setting).</source>
         <translation>پارامتر شکل alpha پنجرهٔ GGS (تنظیم عملی Shui &amp; Cheng).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="185"/>
+        <location filename="core_strings.py" line="191"/>
         <source>GGS window width beta, px.</source>
         <translation>پهنای beta پنجرهٔ GGS، px.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="186"/>
+        <location filename="core_strings.py" line="192"/>
         <source>GGS window length sigma_x, px (l_f = 13).</source>
         <translation>طول sigma_x پنجرهٔ GGS، px (l_f = 13).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="187"/>
+        <location filename="core_strings.py" line="193"/>
         <source>GGS orientations P (not given; 8).</source>
         <translation>تعداد جهت‌های P در GGS (ذکر نشده؛ ۸).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="188"/>
+        <location filename="core_strings.py" line="194"/>
         <source>Hysteresis low threshold on 1 - ratio (not given).</source>
         <translation>آستانهٔ پایین هیسترزیس روی مقدار ۱ منهای نسبت (ذکر نشده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="189"/>
+        <location filename="core_strings.py" line="195"/>
         <source>Hysteresis high threshold on 1 - ratio (not given).</source>
         <translation>آستانهٔ بالای هیسترزیس روی مقدار ۱ منهای نسبت (ذکر نشده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="190"/>
+        <location filename="core_strings.py" line="196"/>
         <source>Edge components smaller than this are removed (the thesis: 65).</source>
         <translation>مؤلفه‌های همبند لبه که کوچک‌تر از این مقدارند حذف می‌شوند (پایان‌نامه: ۶۵).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="191"/>
+        <location filename="core_strings.py" line="197"/>
         <source>Radon peaks taken before clustering (not given; 40).</source>
         <translation>تعداد قله‌های رادون که پیش از خوشه‌بندی برداشته می‌شوند (ذکر نشده؛ ۴۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="192"/>
+        <location filename="core_strings.py" line="198"/>
         <source>Radon angle step, degrees (MATLAB&apos;s default 1).</source>
         <translation>گام زاویهٔ رادون، درجه (پیش‌فرض MATLAB: ۱).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="193"/>
+        <location filename="core_strings.py" line="199"/>
         <source>Fewest edge pixels on a line; 0 = Sui et al.&apos;s 15 px per 256 px of image side.</source>
         <translation>کمینهٔ تعداد پیکسل‌های لبه روی یک خط؛ ۰ = مقدار Sui et al.، یعنی ۱۵ px به ازای هر ۲۵۶ px از ضلع تصویر.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="194"/>
+        <location filename="core_strings.py" line="200"/>
         <source>Lines closer than this in angle ... (not given; 5).</source>
         <translation>خطوطی که از نظر زاویه نزدیک‌تر از این مقدارند ... (ذکر نشده؛ ۵).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="195"/>
+        <location filename="core_strings.py" line="201"/>
         <source>... and this in offset are one line (not given; 10).</source>
         <translation>... و از نظر فاصله از مبدأ نزدیک‌تر از این مقدار، یک خط به شمار می‌آیند (ذکر نشده؛ ۱۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="196"/>
+        <location filename="core_strings.py" line="202"/>
         <source>Line pairs crossing at less than this are not intersected (Sui et al.).</source>
         <translation>نقطهٔ تقاطع زوج خط‌هایی که با زاویه‌ای کمتر از این مقدار یکدیگر را قطع می‌کنند محاسبه نمی‌شود (Sui et al.).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="220"/>
+        <location filename="core_strings.py" line="226"/>
         <source>Eigenvector matching, VSPM, or their fusion (the thesis).</source>
         <translation>تناظریابی با بردار ویژه (eigenvector)، VSPM (vspm) یا تلفیق آن دو (fusion، طبق پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="198"/>
+        <location filename="core_strings.py" line="204"/>
         <source>Fusion rule (not given): score-level sum, or cascade (VSPM&apos;s proximity inside eigenvector matching).</source>
         <translation>قاعدهٔ تلفیق (ذکر نشده): جمع در سطح امتیاز (score)، یا آبشاری (cascade: ماتریس مجاورت VSPM درون تناظریابی بردار ویژه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="199"/>
+        <location filename="core_strings.py" line="205"/>
         <source>Weight of the eigenvector score in the score-level fusion.</source>
         <translation>وزن امتیاز بردار ویژه در تلفیق در سطح امتیاز.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="200"/>
+        <location filename="core_strings.py" line="206"/>
         <source>Eigenvector proximity sigma as a fraction of each point set&apos;s RMS spread (not given).</source>
         <translation>مقدار sigma مجاورت در تناظریابی بردار ویژه، به‌صورت کسری از پراکندگی RMS هر مجموعه نقطه (ذکر نشده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="201"/>
+        <location filename="core_strings.py" line="207"/>
         <source>VSPM proximity matrix: as printed (eq. 2-73), laplacian or gaussian.</source>
         <translation>ماتریس مجاورت VSPM: مطابق متن چاپ‌شده (printed، معادلهٔ 2-73)، لاپلاسی (laplacian) یا گوسی (gaussian).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="202"/>
+        <location filename="core_strings.py" line="208"/>
         <source>Crossing angles of matched intersections differ by less (the thesis).</source>
         <translation>زاویه‌های برخورد در تقاطع‌های متناظر کمتر از این مقدار با هم اختلاف دارند (طبق پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="197"/>
+        <location filename="core_strings.py" line="203"/>
         <source>Shapiro-Brady eigenvector matching alone (the thesis&apos;s baseline).</source>
         <translation>فقط تناظریابی بردار ویژهٔ Shapiro-Brady (روش پایهٔ پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="203"/>
+        <location filename="core_strings.py" line="209"/>
         <source>VSPM alone (the thesis&apos;s baseline).</source>
         <translation>فقط VSPM (روش پایهٔ پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="103"/>
+        <location filename="core_strings.py" line="104"/>
         <source>What the target raster holds when it is SAR: amplitude, intensity or db (other images: leave amplitude).</source>
         <translation>نوع مقادیر رستر هدف وقتی SAR است: دامنه (amplitude)، شدت (intensity) یا دسی‌بل (db)؛ برای سایر تصاویر همان amplitude بماند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="104"/>
+        <location filename="core_strings.py" line="105"/>
         <source>No Lee filter: CFOG&apos;s smoothing already averages speckle, and the filter measured no gain (multimodal proxy 8/8 either way; real pairs 0.85 vs 1.06 px median).</source>
         <translation>بدون فیلتر لی: هموارسازی CFOG خودش اسپکل را میانگین می‌گیرد و فیلتر در سنجش‌ها بهبودی نشان نداد (مجموعهٔ جایگزین چندمدالیته در هر دو حالت ۸/۸؛ جفت‌های واقعی: میانهٔ ۰٫۸۵ در برابر ۱٫۰۶ px).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="105"/>
+        <location filename="core_strings.py" line="106"/>
         <source>Coarse transform: exhaustive CFOG search (default: it registers where the thesis&apos;s 5-8 matches cannot) or the thesis&apos;s lines.</source>
         <translation>تبدیل تقریبی: جست‌وجوی کامل CFOG (search؛ پیش‌فرض: جایی ثبت می‌کند که ۵ تا ۸ تطابق روش پایان‌نامه از پس آن برنمی‌آیند) یا خطوط پایان‌نامه (lines).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="106"/>
+        <location filename="core_strings.py" line="107"/>
         <source>Rotations searched, +- degrees (georeferenced targets arrive north-up, so rotation is small).</source>
         <translation>بازهٔ دوران‌های جست‌وجوشده، +- درجه (تصاویر هدف زمین‌مرجع‌شده شمال‌بالا هستند، پس دوران کوچک است).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="107"/>
+        <location filename="core_strings.py" line="108"/>
         <source>Scales searched, 1/max_scale .. max_scale (2 registers the scale family&apos;s 0.5-2, 10/10 against 6/10 for 1.5, for 26 % more time on a 1000 px pair).</source>
         <translation>بازهٔ مقیاس‌های جست‌وجوشده، 1/max_scale .. max_scale (مقدار ۲ خانوادهٔ آزمون مقیاس با بازهٔ ۰٫۵ تا ۲ را ثبت می‌کند، ۱۰/۱۰ در برابر ۶/۱۰ برای ۱٫۵، به بهای ۲۶ % زمان بیشتر روی یک جفت ۱۰۰۰ px).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="108"/>
+        <location filename="core_strings.py" line="109"/>
         <source>Longest reference side at the first search level, px.</source>
         <translation>طول بلندترین ضلع تصویر مرجع در نخستین سطح جست‌وجو، px.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="109"/>
+        <location filename="core_strings.py" line="110"/>
         <source>The search compares descriptors minus their local mean over this many first-level px: with the global mean (0) regional orientation statistics favoured wrong axis-aligned candidates (overlap family 8/10; 3 px: 10/10, 6 px: 9/10).</source>
         <translation>جست‌وجو توصیفگرها را پس از کم کردن میانگین محلی‌شان در پنجره‌ای به این اندازه (px سطح اول) مقایسه می‌کند: با میانگین سراسری (۰)، آمار جهت‌های ناحیه‌ای به سود نامزدهای نادرستِ هم‌راستا با محورها عمل می‌کرد (خانوادهٔ همپوشانی ۸/۱۰؛ ۳ px: ۱۰/۱۰، ۶ px: ۹/۱۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="110"/>
+        <location filename="core_strings.py" line="111"/>
         <source>Side of the CFOG templates, working px.</source>
         <translation>اندازهٔ ضلع الگوهای CFOG، px کاری.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="111"/>
+        <location filename="core_strings.py" line="112"/>
         <source>Search radius of the first dense pass, working px (covers the coarse error).</source>
         <translation>شعاع جست‌وجوی نخستین گذر متراکم، px کاری (خطای تبدیل تقریبی را پوشش می‌دهد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="112"/>
+        <location filename="core_strings.py" line="113"/>
         <source>Weakest accepted template correlation; RANSAC removes the rest.</source>
         <translation>کمترین همبستگی پذیرفتنی برای الگو؛ RANSAC بقیه را حذف می‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="113"/>
+        <location filename="core_strings.py" line="114"/>
         <source>Templates per dense pass.</source>
         <translation>تعداد الگوها در هر گذر متراکم.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="114"/>
+        <location filename="core_strings.py" line="115"/>
         <source>Coarse candidates checked by dense matching when the best is not convincing.</source>
         <translation>تعداد نامزدهای تقریبی که اگر بهترین نامزد قانع‌کننده نباشد، با تناظریابی متراکم بررسی می‌شوند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="117"/>
+        <location filename="core_strings.py" line="118"/>
         <source>What the SAR raster holds: amplitude, intensity or db (complex is read as amplitude).</source>
         <translation>نوع مقادیر رستر SAR: دامنه (amplitude)، شدت (intensity) یا دسی‌بل (db)؛ دادهٔ مختلط به‌صورت دامنه خوانده می‌شود.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="118"/>
+        <location filename="core_strings.py" line="119"/>
         <source>Scale space: nonlinear (the paper), gaussian or bilateral (baselines).</source>
         <translation>فضای مقیاس: غیرخطی (nonlinear، طبق مقاله)، گوسی (gaussian) یا دوسویه (bilateral) به‌عنوان روش‌های پایه.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="119"/>
+        <location filename="core_strings.py" line="120"/>
         <source>Run on log amplitude, where speckle is additive and of one strength everywhere (not in the paper).</source>
         <translation>اجرا روی لگاریتم دامنه، که در آن اسپکل جمعی است و همه‌جا شدت یکسانی دارد (در مقاله نیست).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="120"/>
+        <location filename="core_strings.py" line="121"/>
         <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does: on 1-look speckle it turns 3 of 24 failures into successes (the paper starts from the original image).</source>
         <translation>پیش‌هموارسازی گوسی تا sigma_0 پیش از پخش، همان‌گونه که KAZE انجام می‌دهد: روی اسپکل تک‌نگاه، ۳ مورد از ۲۴ شکست را به موفقیت تبدیل می‌کند (مقاله از تصویر اصلی شروع می‌کند).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="121"/>
+        <location filename="core_strings.py" line="122"/>
         <source>Octaves O (the paper: 4).</source>
         <translation>تعداد اکتاوها، O (مقاله: ۴).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="122"/>
+        <location filename="core_strings.py" line="123"/>
         <source>Sub-levels S per octave (the paper: 3; S + 3 images per octave).</source>
         <translation>تعداد زیرسطح‌ها در هر اکتاو، S (مقاله: ۳؛ S + 3 تصویر در هر اکتاو).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="123"/>
+        <location filename="core_strings.py" line="124"/>
         <source>Base scale sigma_0 (gap; Lowe&apos;s 1.6).</source>
         <translation>مقیاس پایه، sigma_0 (نامشخص در مقاله؛ مقدار ۱٫۶ از Lowe).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="124"/>
+        <location filename="core_strings.py" line="125"/>
         <source>ROEWA exponential weight alpha (gap; SAR-SIFT&apos;s 2).</source>
         <translation>وزن نمایی alpha در ROEWA (نامشخص در مقاله؛ مقدار ۲ از SAR-SIFT).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="125"/>
+        <location filename="core_strings.py" line="126"/>
         <source>Contrast factor K = this percentile of the ROEWA gradient (gap; KAZE&apos;s 70).</source>
         <translation>ضریب کنتراست K = این صدک از گرادیان ROEWA (نامشخص در مقاله؛ مقدار ۷۰ از KAZE).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="126"/>
+        <location filename="core_strings.py" line="127"/>
         <source>K is multiplied by this at each new octave (the paper: &apos;change K&apos;; AKAZE&apos;s 0.75).</source>
         <translation>ضریب K در هر اکتاو جدید در این مقدار ضرب می‌شود (مقاله: «change K»؛ مقدار ۰٫۷۵ از AKAZE).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="127"/>
+        <location filename="core_strings.py" line="128"/>
         <source>Gradient inside the conductance: roewa (the paper) or difference.</source>
         <translation>گرادیان درون تابع رسانایی: roewa (طبق مقاله) یا تفاضلی (difference).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="128"/>
+        <location filename="core_strings.py" line="129"/>
         <source>DoG contrast threshold on the [0, 1] amplitude (gap; Lowe&apos;s 0.03).</source>
         <translation>آستانهٔ کنتراست DoG روی دامنهٔ [0, 1] (نامشخص در مقاله؛ مقدار ۰٫۰۳ از Lowe).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="129"/>
+        <location filename="core_strings.py" line="130"/>
         <source>DoG edge ratio r (Lowe&apos;s 10).</source>
         <translation>نسبت لبهٔ r در DoG (مقدار ۱۰ از Lowe).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="130"/>
+        <location filename="core_strings.py" line="131"/>
         <source>Drop keypoints whose phase congruency is below pc_threshold (the paper).</source>
         <translation>حذف نقاط کلیدی‌ای که همدوسی فازشان کمتر از pc_threshold است (طبق مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="131"/>
+        <location filename="core_strings.py" line="132"/>
         <source>Phase congruency threshold (the paper: 0.01).</source>
         <translation>آستانهٔ همدوسی فاز (مقاله: ۰٫۰۱).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="132"/>
+        <location filename="core_strings.py" line="133"/>
         <source>Kovesi&apos;s noise multiplier k (gap; his default 2).</source>
         <translation>ضریب نویز k در روش Kovesi (نامشخص در مقاله؛ پیش‌فرض خود او: ۲).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="133"/>
+        <location filename="core_strings.py" line="134"/>
         <source>Range sigma of the bilateral scale space on the [0, 1] amplitude (BFSIFT baseline; not given).</source>
         <translation>مقدار sigma برد (range) در فضای مقیاس دوسویه روی دامنهٔ [0, 1] (روش پایهٔ BFSIFT؛ ذکر نشده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="134"/>
+        <location filename="core_strings.py" line="135"/>
         <source>Ignore keypoints of the finest octave (BFSIFT does).</source>
         <translation>نادیده گرفتن نقاط کلیدی ریزترین اکتاو (کاری که BFSIFT می‌کند).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="135"/>
+        <location filename="core_strings.py" line="136"/>
         <source>Nearest/second-nearest ratio (the paper: 0.8).</source>
         <translation>نسبت نزدیک‌ترین به دومین نزدیک‌ترین همسایه (مقاله: ۰٫۸).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="136"/>
+        <location filename="core_strings.py" line="137"/>
         <source>One-way ratio test: dual ratio matching keeps too few matches on 1-look speckle, and RANSAC removes the extra outliers (the paper: dual-ratio).</source>
         <translation>آزمون نسبت یک‌طرفه: تناظریابی با نسبت دوطرفه روی اسپکل تک‌نگاه تطابق‌های بسیار کمی نگه می‌دارد و RANSAC نقاط پرت اضافی را حذف می‌کند (مقاله: dual-ratio).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="173"/>
+        <location filename="core_strings.py" line="179"/>
         <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does (the paper starts from the original image).</source>
         <translation>پیش‌هموارسازی گوسی تا sigma_0 پیش از پخش، همان‌گونه که KAZE انجام می‌دهد (مقاله از تصویر اصلی شروع می‌کند).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="176"/>
+        <location filename="core_strings.py" line="182"/>
         <source>Dual matching: both directions pass the ratio test (the paper).</source>
         <translation>تناظریابی دوطرفه: هر دو جهت باید از آزمون نسبت بگذرند (طبق مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="204"/>
+        <location filename="core_strings.py" line="210"/>
         <source>NDSS+SIFT: the paper&apos;s ablation without phase congruency.</source>
         <translation>روش NDSS+SIFT: آزمایش حذفی مقاله، بدون همدوسی فاز.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="178"/>
+        <location filename="core_strings.py" line="184"/>
         <source>Gaussian scale space (the paper&apos;s SIFT baseline).</source>
         <translation>فضای مقیاس گوسی (روش پایهٔ SIFT در مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="179"/>
+        <location filename="core_strings.py" line="185"/>
         <source>No phase congruency in the baseline.</source>
         <translation>روش پایه از همدوسی فاز استفاده نمی‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="172"/>
+        <location filename="core_strings.py" line="178"/>
         <source>Bilateral-filter scale space (BFSIFT).</source>
         <translation>فضای مقیاس با فیلتر دوسویه (BFSIFT).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="174"/>
+        <location filename="core_strings.py" line="180"/>
         <source>No phase congruency in BFSIFT.</source>
         <translation>روش BFSIFT از همدوسی فاز استفاده نمی‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="175"/>
+        <location filename="core_strings.py" line="181"/>
         <source>BFSIFT skips the finest scale.</source>
         <translation>روش BFSIFT ریزترین مقیاس را کنار می‌گذارد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="205"/>
+        <location filename="core_strings.py" line="211"/>
         <source>Strongest keypoints kept per image.</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی که در هر تصویر نگه داشته می‌شوند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="206"/>
+        <location filename="core_strings.py" line="212"/>
         <source>FAST corner threshold (OpenCV default).</source>
         <translation>آستانهٔ گوشه‌یابی FAST (پیش‌فرض OpenCV).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="207"/>
+        <location filename="core_strings.py" line="213"/>
         <source>Pyramid levels, scale factor 1.2 (OpenCV default).</source>
         <translation>تعداد سطوح هرم، با ضریب مقیاس ۱٫۲ (پیش‌فرض OpenCV).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="208"/>
+        <location filename="core_strings.py" line="214"/>
         <source>Nearest/second-nearest Hamming distance ratio.</source>
         <translation>نسبت فاصلهٔ همینگ نزدیک‌ترین به دومین نزدیک‌ترین همسایه.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="145"/>
+        <location filename="core_strings.py" line="146"/>
         <source>Cross-check of matches: none, mutual or dual-ratio.</source>
         <translation>بررسی متقابل تطابق‌ها: بدون بررسی (none)، دوطرفه (mutual) یا نسبت دوطرفه (dual-ratio).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="209"/>
+        <location filename="core_strings.py" line="215"/>
         <source>Strongest SIFT keypoints kept per image (0 = all).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی SIFT که در هر تصویر نگه داشته می‌شوند (۰ = همه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="210"/>
+        <location filename="core_strings.py" line="216"/>
         <source>Nearest/second-nearest distance ratio (as the SIFT baseline).</source>
         <translation>نسبت فاصلهٔ نزدیک‌ترین به دومین نزدیک‌ترین همسایه (مانند روش پایهٔ SIFT).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="211"/>
+        <location filename="core_strings.py" line="217"/>
         <source>Correspondences per side of the grid that carries the shift.</source>
         <translation>تعداد نقاط تناظر در هر ضلع شبکه‌ای که جابه‌جایی به‌دست‌آمده را منتقل می‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="212"/>
+        <location filename="core_strings.py" line="218"/>
         <source>Lowest accepted normalised correlation peak.</source>
         <translation>کمترین قلهٔ همبستگی نرمال‌شدهٔ پذیرفتنی.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="213"/>
+        <location filename="core_strings.py" line="219"/>
         <source>Strongest FAST corners kept per image (RIFT: 5000).</source>
         <translation>تعداد قوی‌ترین گوشه‌های FAST که در هر تصویر نگه داشته می‌شوند (RIFT: ۵۰۰۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="139"/>
+        <location filename="core_strings.py" line="140"/>
         <source>Strongest CenSurE keypoints kept per image (the paper: 2500).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی CenSurE که در هر تصویر نگه داشته می‌شوند (مقاله: ۲۵۰۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="140"/>
+        <location filename="core_strings.py" line="141"/>
         <source>Smallest |CenSurE response| in grey levels (gap: paper uses CenSurE defaults without values).</source>
         <translation>کمترین مقدار |پاسخ CenSurE| بر حسب سطح خاکستری (نامشخص در مقاله: مقاله از پیش‌فرض‌های CenSurE بدون ذکر مقدارشان استفاده می‌کند).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="141"/>
+        <location filename="core_strings.py" line="142"/>
         <source>CenSurE&apos;s edge test limit on trace^2/det (Agrawal et al. 2008).</source>
         <translation>حد آزمون لبهٔ CenSurE روی trace^2/det (Agrawal et al. 2008).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="142"/>
+        <location filename="core_strings.py" line="143"/>
         <source>Region radius = factor x half the outer octagon (gap in the paper).</source>
         <translation>شعاع ناحیه = ضریب × نصف هشت‌ضلعی بیرونی (نامشخص در مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="143"/>
+        <location filename="core_strings.py" line="144"/>
         <source>Product: quadratic sub-pixel keypoint positions (CenSurE keeps whole pixels).</source>
         <translation>نسخهٔ محصول: موقعیت زیرپیکسلی نقاط کلیدی با برازش درجه دو (CenSurE موقعیت‌ها را در پیکسل‌های صحیح نگه می‌دارد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="144"/>
+        <location filename="core_strings.py" line="145"/>
         <source>Nearest/second-nearest distance ratio (gap: the paper&apos;s rule is not given).</source>
         <translation>نسبت فاصلهٔ نزدیک‌ترین به دومین نزدیک‌ترین همسایه (نامشخص در مقاله: قاعدهٔ مقاله ذکر نشده است).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="146"/>
+        <location filename="core_strings.py" line="147"/>
         <source>LBP neighbour radius in region pixels (gap; the paper&apos;s figure shows 1; 2 keeps codes stable under keypoint and resampling jitter).</source>
         <translation>شعاع همسایگی LBP بر حسب پیکسل ناحیه (نامشخص در مقاله؛ شکل مقاله ۱ را نشان می‌دهد؛ مقدار ۲ کدها را در برابر لرزش موقعیت نقاط کلیدی و بازنمونه‌برداری پایدار نگه می‌دارد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="147"/>
+        <location filename="core_strings.py" line="148"/>
         <source>Product: Gaussian sigma (region pixels) before coding; the paper has none, and radius-1 codes on raw pixels flip on sensor noise.</source>
         <translation>نسخهٔ محصول: sigma گوسی (پیکسل ناحیه) پیش از کدگذاری؛ مقاله هموارسازی ندارد و کدهای شعاع ۱ روی پیکسل‌های خام با نویز حسگر وارونه می‌شوند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="148"/>
+        <location filename="core_strings.py" line="149"/>
         <source>CS-LBP threshold T in grey levels (gap; 0 = exact gain/offset invariance).</source>
         <translation>آستانهٔ T در CS-LBP بر حسب سطح خاکستری (نامشخص در مقاله؛ ۰ = ناوردایی دقیق نسبت به بهره و آفست).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="149"/>
+        <location filename="core_strings.py" line="150"/>
         <source>Ring weight: literal 1-(d/h)^2 (the paper) or border 1-(2d/h)^2.</source>
         <translation>وزن حلقه: literal با 1-(d/h)^2 (طبق مقاله) یا border با 1-(2d/h)^2.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="221"/>
+        <location filename="core_strings.py" line="227"/>
         <source>Faithful: whole-pixel CenSurE positions, as the paper.</source>
         <translation>مطابق مقاله: موقعیت‌های CenSurE در پیکسل‌های صحیح، همان‌گونه که در مقاله آمده.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="222"/>
+        <location filename="core_strings.py" line="228"/>
         <source>Faithful: radius 1, the paper&apos;s Fig. 1.</source>
         <translation>مطابق مقاله: شعاع ۱، طبق شکل ۱ مقاله.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="223"/>
+        <location filename="core_strings.py" line="229"/>
         <source>Faithful: no smoothing, as the paper.</source>
         <translation>مطابق مقاله: بدون هموارسازی، همان‌گونه که در مقاله آمده.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="177"/>
+        <location filename="core_strings.py" line="183"/>
         <source>Faithful: whole-pixel CenSurE positions, as in the paper&apos;s comparison.</source>
         <translation>مطابق مقاله: موقعیت‌های CenSurE در پیکسل‌های صحیح، همان‌گونه که در مقایسهٔ مقاله آمده.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="152"/>
+        <location filename="core_strings.py" line="158"/>
         <source>Sobel magnitude threshold T (0..255; gap in the paper, default from a sweep).</source>
         <translation>آستانهٔ T برای بزرگی گرادیان سوبل (0..255؛ نامشخص در مقاله، پیش‌فرض از پویش مقادیر).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="153"/>
+        <location filename="core_strings.py" line="159"/>
         <source>Hamming distance under which a keypoint with a near-duplicate in its own image is removed (gap; from a sweep).</source>
         <translation>فاصلهٔ همینگی که اگر نقطهٔ کلیدی در همان تصویر خودش نقطهٔ تقریباً تکراری با فاصلهٔ کمتر از آن داشته باشد، حذف می‌شود (نامشخص در مقاله؛ از پویش مقادیر).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="154"/>
+        <location filename="core_strings.py" line="160"/>
         <source>Gradient magnitude: l1 = 0.5|Gx|+0.5|Gy| (OpenCV tutorial, the spec&apos;s reading) or l2 = sqrt(Gx^2+Gy^2)/sqrt(2), which does not change with edge direction.</source>
         <translation>بزرگی گرادیان: l1 = 0.5|Gx|+0.5|Gy| (آموزش OpenCV، برداشت سند مشخصات) یا l2 = sqrt(Gx^2+Gy^2)/sqrt(2) که با جهت لبه تغییر نمی‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="155"/>
+        <location filename="core_strings.py" line="161"/>
         <source>to-zero keeps magnitudes above T (the paper); soft subtracts T, so the edge image has no jumps at the threshold for the DoG to fire on.</source>
         <translation>حالت to-zero بزرگی‌های بالاتر از T را نگه می‌دارد (طبق مقاله)؛ حالت soft مقدار T را کم می‌کند تا تصویر لبه در آستانه پرشی نداشته باشد که DoG روی آن پاسخ دهد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="156"/>
+        <location filename="core_strings.py" line="162"/>
         <source>Resolution at which the DoG pyramid starts (2 = OpenCV SIFT&apos;s upsampled base, the paper&apos;s; 1 = full resolution, 4x less work).</source>
         <translation>تفکیک‌پذیری‌ای که هرم DoG از آن شروع می‌شود (۲ = پایهٔ بزرگ‌نمایی‌شدهٔ SIFT در OpenCV، همانند مقاله؛ ۱ = تفکیک‌پذیری کامل، با ۴ برابر محاسبهٔ کمتر).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="157"/>
+        <location filename="core_strings.py" line="163"/>
         <source>Strongest DoG keypoints kept per image (0 = all, as the paper).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی DoG که در هر تصویر نگه داشته می‌شوند (۰ = همه، طبق مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="158"/>
+        <location filename="core_strings.py" line="164"/>
         <source>SIFT DoG contrast threshold on the edge image (OpenCV default).</source>
         <translation>آستانهٔ کنتراست DoG در SIFT روی تصویر لبه (پیش‌فرض OpenCV).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="159"/>
+        <location filename="core_strings.py" line="165"/>
         <source>Describe each keypoint on the pyramid level matching its SIFT size (the paper uses a fixed 31-px patch, which breaks beyond ~1.5x scale).</source>
         <translation>توصیف هر نقطهٔ کلیدی در سطحی از هرم که با اندازهٔ SIFT آن جور است (مقاله وصلهٔ ثابت ۳۱ px به کار می‌برد که در اختلاف مقیاس بیش از حدود ۱٫۵ برابر از کار می‌افتد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="160"/>
+        <location filename="core_strings.py" line="166"/>
         <source>Lowe ratio on Hamming distances (1 = off, as the paper).</source>
         <translation>نسبت Lowe روی فاصله‌های همینگ (۱ = غیرفعال، طبق مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="161"/>
+        <location filename="core_strings.py" line="167"/>
         <source>Spec Appendix B (not in the paper): keep matches at the peaks of the angle and log-scale difference histograms.</source>
         <translation>پیوست B سند مشخصات (در مقاله نیست): نگه‌داشتن تطابق‌هایی که در قله‌های هیستوگرام‌های اختلاف زاویه و اختلاف لگاریتم مقیاس قرار دارند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="224"/>
+        <location filename="core_strings.py" line="230"/>
         <source>Faithful: OpenCV tutorial magnitude 0.5|Gx|+0.5|Gy|.</source>
         <translation>مطابق مقاله: بزرگی گرادیان به روش آموزش OpenCV، یعنی 0.5|Gx|+0.5|Gy|.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="225"/>
+        <location filename="core_strings.py" line="231"/>
         <source>Faithful: threshold-to-zero.</source>
         <translation>مطابق مقاله: آستانه‌گذاری به صفر (threshold-to-zero).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="226"/>
+        <location filename="core_strings.py" line="232"/>
         <source>Faithful: OpenCV SIFT as is (upsampled base).</source>
         <translation>مطابق مقاله: SIFT در OpenCV بدون تغییر (پایهٔ بزرگ‌نمایی‌شده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="227"/>
+        <location filename="core_strings.py" line="233"/>
         <source>Faithful: every DoG keypoint.</source>
         <translation>مطابق مقاله: همهٔ نقاط کلیدی DoG.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="228"/>
+        <location filename="core_strings.py" line="234"/>
         <source>Faithful: one 31-px patch at full resolution for every keypoint.</source>
         <translation>مطابق مقاله: یک وصلهٔ ۳۱ px در تفکیک‌پذیری کامل برای هر نقطهٔ کلیدی.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="229"/>
+        <location filename="core_strings.py" line="235"/>
         <source>Faithful: mutual nearest neighbours without a ratio test.</source>
         <translation>مطابق مقاله: نزدیک‌ترین همسایه‌های دوطرفه بدون آزمون نسبت.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="216"/>
+        <location filename="core_strings.py" line="222"/>
         <source>Strongest keypoints kept per image (0 = all).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی که در هر تصویر نگه داشته می‌شوند (۰ = همه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="217"/>
+        <location filename="core_strings.py" line="223"/>
         <source>DoG contrast threshold (OpenCV default, Lowe 2004).</source>
         <translation>آستانهٔ کنتراست DoG (پیش‌فرض OpenCV، Lowe 2004).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="218"/>
+        <location filename="core_strings.py" line="224"/>
         <source>Edge-response ratio limit (Lowe 2004).</source>
         <translation>حد نسبت پاسخ لبه (Lowe 2004).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="219"/>
+        <location filename="core_strings.py" line="225"/>
         <source>Lowe&apos;s nearest/second-nearest distance ratio.</source>
         <translation>نسبت فاصلهٔ نزدیک‌ترین به دومین نزدیک‌ترین همسایه (Lowe).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="164"/>
+        <location filename="core_strings.py" line="170"/>
         <source>Longest reference side for feature extraction, px: enough detail for RIFT features, and their cost.</source>
         <translation>طول بلندترین ضلع تصویر مرجع برای استخراج ویژگی، px: تعادلی میان جزئیات کافی برای ویژگی‌های RIFT و هزینهٔ محاسبهٔ آن‌ها.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="165"/>
+        <location filename="core_strings.py" line="171"/>
         <source>Pyramid levels (factors 2^-k/2) per image; 3 covers scales 1/2 to 2.</source>
         <translation>تعداد سطوح هرم (ضرایب 2^-k/2) برای هر تصویر؛ ۳ سطح، مقیاس‌های ۱/۲ تا ۲ را پوشش می‌دهد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="166"/>
+        <location filename="core_strings.py" line="172"/>
         <source>Keypoints kept at the first level (0.7 and 0.5 times that at the next two).</source>
         <translation>تعداد نقاط کلیدی نگه‌داشته‌شده در سطح اول (در دو سطح بعدی ۰٫۷ و ۰٫۵ برابر آن).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="167"/>
+        <location filename="core_strings.py" line="173"/>
         <source>Rotation-scale hypotheses checked densely (10 gave nothing more).</source>
         <translation>تعداد فرضیه‌های دوران-مقیاس که به‌صورت متراکم بررسی می‌شوند (۱۰ فرضیه بهبودی بیشتری نداد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="168"/>
+        <location filename="core_strings.py" line="174"/>
         <source>Hypotheses refined by local RIFT (5 gave nothing more).</source>
         <translation>تعداد فرضیه‌هایی که با RIFT محلی پالایش می‌شوند (۵ فرضیه بهبودی بیشتری نداد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="169"/>
+        <location filename="core_strings.py" line="175"/>
         <source>Longest reference side for the dense check, px: keeps its 30 FFT trials per hypothesis cheap; where CFOG separated right from wrong poses best.</source>
         <translation>طول بلندترین ضلع تصویر مرجع برای بررسی متراکم، px: ۳۰ آزمایش FFT هر فرضیه را کم‌هزینه نگه می‌دارد؛ در این اندازه CFOG وضعیت‌های درست را بهتر از همه از وضعیت‌های نادرست جدا کرد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="170"/>
+        <location filename="core_strings.py" line="176"/>
         <source>Longest reference side for local RIFT matching, px.</source>
         <translation>طول بلندترین ضلع تصویر مرجع برای تناظریابی محلی RIFT، px.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="171"/>
+        <location filename="core_strings.py" line="177"/>
         <source>Fewest local-RIFT inliers for a refined hypothesis.</source>
         <translation>کمترین تعداد نقاط سازگار (inlier) در RIFT محلی برای یک فرضیهٔ پالایش‌شده.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="83"/>
+        <location filename="core_strings.py" line="84"/>
         <source>Output CRS (empty: the reference&apos;s)</source>
         <translation>سیستم مختصات خروجی (خالی: سیستم مختصات مرجع)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="86"/>
+        <location filename="core_strings.py" line="87"/>
         <source>Output format</source>
         <translation>قالب خروجی</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="94"/>
+        <location filename="core_strings.py" line="95"/>
         <source>Pixels outside the target</source>
         <translation>پیکسل‌های بیرون از هدف</translation>
     </message>
@@ -1228,37 +1283,37 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>همتا با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {})؛ هیچ خروجی‌ای نوشته نشد. لطفاً آن را گزارش کنید.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="89"/>
+        <location filename="core_strings.py" line="90"/>
         <source>GeoTIFF (tiled, compressed)</source>
         <translation>GeoTIFF (کاشی‌بندی‌شده، فشرده)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="91"/>
+        <location filename="core_strings.py" line="92"/>
         <source>Warped VRT (no pixels copied)</source>
         <translation>VRT تبدیل‌شده (بدون رونوشت پیکسل‌ها)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="97"/>
+        <location filename="core_strings.py" line="98"/>
         <source>Alpha band</source>
         <translation>باند آلفا</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="98"/>
+        <location filename="core_strings.py" line="99"/>
         <source>Nodata value</source>
         <translation>مقدار بی‌داده</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="88"/>
+        <location filename="core_strings.py" line="89"/>
         <source>From the file name (.vrt or GeoTIFF)</source>
         <translation>از نام فایل (.vrt یا GeoTIFF)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="90"/>
+        <location filename="core_strings.py" line="91"/>
         <source>Cloud-optimised GeoTIFF</source>
         <translation>GeoTIFF بهینه برای ابر (COG)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="96"/>
+        <location filename="core_strings.py" line="97"/>
         <source>Automatic (nodata, NaN or an alpha band)</source>
         <translation>خودکار (nodata، NaN یا باند آلفا)</translation>
     </message>
@@ -1328,7 +1383,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>{} (گزینهٔ «{}» را فعال کنید).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="306"/>
+        <location filename="../processing/register_algorithm.py" line="308"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation>{}؛ RMSE گزارش‌شده از خود برازش {:.3f} px، RMS حذف تک‌نقطه {} px (باقی‌مانده‌های برازش، نه دقت آن).</translation>
     </message>
@@ -1348,12 +1403,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>باند هدف برای تطبیق</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="80"/>
+        <location filename="core_strings.py" line="81"/>
         <source>Output pixel size (output CRS units)</source>
         <translation>اندازهٔ پیکسل خروجی (واحد CRS خروجی)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="92"/>
+        <location filename="core_strings.py" line="93"/>
         <source>GDAL creation options</source>
         <translation>گزینه‌های ساخت GDAL</translation>
     </message>
@@ -1484,71 +1539,71 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     </message>
     <message>
         <location filename="core_strings.py" line="76"/>
-        <source>output pixel grid: the reference&apos;s, the target&apos;s own resolution, or auto (the reference&apos;s when the resolutions are within 10 %)</source>
-        <translation>شبکهٔ پیکسلی خروجی: شبکهٔ مرجع، تفکیک‌پذیری خود تصویر هدف، یا خودکار (شبکهٔ مرجع وقتی تفکیک‌پذیری‌ها کمتر از ۱۰٪ اختلاف دارند)</translation>
+        <source>output pixel grid: the reference&apos;s, the target&apos;s own resolution, auto (the reference&apos;s when the resolutions are within 10 %), or target: the target&apos;s pixels unchanged under a corrected geotransform (where the model is a shift and scale, in the reference CRS)</source>
+        <translation>شبکهٔ پیکسلی خروجی: شبکهٔ مرجع، تفکیک‌پذیری خود تصویر هدف، خودکار (شبکهٔ مرجع وقتی تفکیک‌پذیری‌ها کمتر از ۱۰٪ اختلاف دارند)، یا هدف: پیکسل‌های تصویر هدف بی‌تغییر با زمین‌مرجع اصلاح‌شده (وقتی مدل جابه‌جایی و مقیاس است، در سامانهٔ مختصات مرجع)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="81"/>
+        <location filename="core_strings.py" line="82"/>
         <source>output pixel size in output CRS units (overrides the grid&apos;s)</source>
         <translation>اندازهٔ پیکسل خروجی به واحد سامانهٔ مختصات خروجی (بر اندازهٔ شبکه مقدم است)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="82"/>
+        <location filename="core_strings.py" line="83"/>
         <source>from the pixel grid</source>
         <translation>از شبکهٔ پیکسلی</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="84"/>
+        <location filename="core_strings.py" line="85"/>
         <source>output CRS: EPSG:code, WKT or PROJ string</source>
         <translation>سامانهٔ مختصات خروجی: EPSG:کد، WKT یا رشتهٔ PROJ</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="85"/>
+        <location filename="core_strings.py" line="86"/>
         <source>the reference&apos;s CRS</source>
         <translation>سامانهٔ مختصات مرجع</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="93"/>
+        <location filename="core_strings.py" line="94"/>
         <source>GDAL creation options of the warped raster, KEY=VALUE (e.g. COMPRESS=ZSTD, PREDICTOR=2), added to and overriding Hamta&apos;s defaults for the format</source>
         <translation>گزینه‌های ساخت GDAL برای رستر تبدیل‌شده، به شکل KEY=VALUE (مثلاً COMPRESS=ZSTD، PREDICTOR=2)، افزوده به پیش‌فرض‌های همتا برای آن قالب و مقدم بر آن‌ها</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="99"/>
+        <location filename="core_strings.py" line="100"/>
         <source>nodata value with fill &apos;nodata&apos;</source>
         <translation>مقدار nodata هنگام پرکردن با «nodata»</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="100"/>
+        <location filename="core_strings.py" line="101"/>
         <source>the target&apos;s, else 0</source>
         <translation>مقدار تصویر هدف، وگرنه ۰</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="215"/>
+        <location filename="core_strings.py" line="221"/>
         <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.</source>
         <translation>رستر هدف را به‌طور خودکار روی رستر مرجع ثبت می‌کند: نقاط کلیدی SIFT از OpenCV، آزمون نسبت لو با بررسی دوطرفه، RANSAC با بذر ثابت، پالایش در تفکیک‌پذیری کامل، و برازش تبدیل انتخاب‌شده روی نقاط کنترلِ خوب‌پراکنده. رستر زمین‌مرجع‌شده و نقاط کنترل را به‌صورت لایه نقطه‌ای می‌نویسد و در صورت درخواست، پرونده .points برای Georeferencer کیوجی‌آی‌اس، یک VRT همراه نقاط کنترل و گزارشی به قالب JSON.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="102"/>
+        <location filename="core_strings.py" line="103"/>
         <source>Registers a SAR image (the target) onto an optical reference, where intensities do not correspond and contrast is often inverted: an exhaustive search over rotation (up to 30 degrees either way), scale (up to 2 times either way) and shift on CFOG structural descriptors (gradient orientations, blind to the sign of contrast), then CFOG template matching on a regular grid, seeded RANSAC, the chosen transformation on well-spread GCPs, and full-resolution refinement of decimated images with the same similarity. Widen the rotation range for targets that are not roughly north-up. The CLI method &apos;lines-spectral-faithful&apos; is the thesis&apos;s line-intersection matcher as written (Radon lines, eigenvector and Voronoi/Hausdorff spectral matching), which rarely finds enough correct matches to register.</source>
         <translation>تصویر SAR (هدف) را روی تصویر نوری مرجع ثبت می‌کند، جایی که شدت‌ها با هم متناظر نیستند و کنتراست اغلب وارونه است: جست‌وجوی کامل روی دوران (تا ۳۰ درجه به هر سو)، مقیاس (تا ۲ برابر به هر سو) و جابه‌جایی با توصیفگرهای ساختاری CFOG (جهت‌های گرادیان، بی‌اعتنا به علامت کنتراست)، سپس تطبیق الگوی CFOG روی یک شبکهٔ منظم، RANSAC با بذر ثابت، برازش تبدیل انتخاب‌شده روی نقاط کنترل زمینی خوب‌پراکنده، و پالایش تصاویر کاهش‌یافته با تفکیک کامل با همان معیار شباهت. برای تصاویر هدفی که تقریباً شمال‌بالا نیستند، بازهٔ دوران را بزرگ‌تر کنید. روش «lines-spectral-faithful» در خط فرمان تناظریاب نقاط تقاطع خطوطِ پایان‌نامه به همان صورت نوشته‌شده است (خطوط رادون، تناظریابی طیفی با بردارهای ویژه و ورونوی/هاسدورف) که به‌ندرت تناظرهای درست کافی برای ثبت پیدا می‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="116"/>
+        <location filename="core_strings.py" line="117"/>
         <source>Registers a SAR image onto a SAR reference (another date, band or polarisation) despite speckle: a nonlinear diffusion scale space whose conductance uses the speckle-robust ROEWA gradient, SIFT keypoints and descriptors on it, keypoints kept only where phase congruency shows real structure, ratio-test matching, seeded RANSAC, then correlation refinement on a grid at full resolution. Set what the rasters hold (amplitude, intensity or dB; complex data is read as amplitude). Product defaults pre-smooth and use a one-way ratio test; the CLI method &apos;ndsift-pc-faithful&apos; is the paper as written.</source>
         <translation>تصویر SAR را با وجود اسپکل روی تصویر SAR مرجع (تاریخ، باند یا قطبش دیگر) ثبت می‌کند: فضای مقیاس پخش غیرخطی که رسانایی آن از گرادیان ROEWA مقاوم در برابر اسپکل استفاده می‌کند، نقاط کلیدی و توصیفگرهای SIFT روی آن، نگه‌داشتن نقاط کلیدی فقط جایی که همدوسی فاز ساختار واقعی نشان می‌دهد، تناظریابی با آزمون نسبت، RANSAC با بذر ثابت، سپس پالایش همبستگی روی یک شبکه با تفکیک کامل. تعیین کنید رسترها چه چیزی دارند (دامنه، شدت یا دسی‌بل؛ داده‌های مختلط به‌صورت دامنه خوانده می‌شوند). پیش‌فرض‌های محصول پیش‌هموارسازی می‌کنند و آزمون نسبت یک‌طرفه به کار می‌برند؛ روش «ndsift-pc-faithful» در خط فرمان نسخهٔ مطابق مقاله است.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="138"/>
+        <location filename="core_strings.py" line="139"/>
         <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.</source>
         <translation>تصویر ماهواره‌ای اپتیکی را با هر مقدار دوران نسبت به مرجع ثبت می‌کند: نقاط کلیدی CenSurE با فیلترهای هشت‌ضلعی که با توصیفگر الگوی باینری محلی مستقل از دوران توصیف می‌شوند (حلقه‌ها، زیرنواحی مبتنی بر ترتیب شدت، LBP متقارن مرکزی در دستگاه مختصات شعاعی هر پیکسل؛ بدون مرحلهٔ تعیین جهت)، تناظریابی دوطرفه با آزمون نسبت، RANSAC با بذر ثابت و برازش تبدیل انتخاب‌شده روی نقاط کنترلِ خوب‌پراکنده. پیش‌فرض‌های محصول، نقاط کلیدی زیرپیکسلی و کدهای هموارشده با شعاع ۲ را می‌افزایند؛ روش «rilbp-faithful» در خط فرمان نسخهٔ مطابق مقاله است.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="151"/>
+        <location filename="core_strings.py" line="157"/>
         <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.</source>
         <translation>تصویر هوایی (یا هر تصویر اپتیکی) را به‌سرعت روی تصویر ماهواره‌ای مرجع ثبت می‌کند: نقاط کلیدی تفاضل گوسی SIFT که روی تصویر لبهٔ آستانه‌گذاری‌شدهٔ سوبل آشکار می‌شوند، توصیفگرهای دودویی rBRIEF که با مرکز ثقل شدت جهت‌دهی می‌شوند، حذف نقاط کلیدی خودمشابه، تناظریابی دوطرفه با فاصلهٔ همینگ و RANSAC با نمونه‌های آفین. نقاط کلیدی کم‌شمار و قوی آن را چند برابر سریع‌تر از SIFT می‌کنند. پیش‌فرض‌های محصول هر نقطه را در مقیاس خودش توصیف می‌کنند و آزمون نسبت را می‌افزایند؛ روش «sibrif-faithful» در خط فرمان نسخهٔ مطابق مقاله است.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="163"/>
+        <location filename="core_strings.py" line="169"/>
         <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.</source>
         <translation>تصویر هدفی با مدالیته‌ای متفاوت از مرجع (SAR، فروسرخ، رندر عمق، نقشهٔ وب، نورهای شبانه روی تصاویر نوری) را با هر دوران و در مقیاس‌های ۱/۲ تا ۲ ثبت می‌کند: ویژگی‌های همدوسی فاز (RIFT) به دوران و مقیاس رأی می‌دهند، هر فرضیه به‌صورت متراکم با توصیفگرهای ساختاری CFOG بررسی می‌شود، بهترین فرضیه‌ها با تناظریابی توصیفگرهای RIFT در نزدیکی موقعیت‌های پیش‌بینی‌شده‌شان پالایش می‌شوند، و نتیجه در تفکیک‌پذیری کامل با CFOG پالایش و به‌طور مستقل بررسی می‌شود. روش پایهٔ آن، یعنی تناظریاب منتشرشدهٔ RIFT2، روش «rift» در خط فرمان است.</translation>
     </message>
@@ -1583,17 +1638,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>ثبت پیکسل‌به‌پیکسل روی مرجعی بدون زمین‌مرجع: شبکهٔ پیکسلی آن جای نقشه را می‌گیرد و خروجی‌ها سامانهٔ مختصات ندارند (بدون این گزینه چنین مرجعی پذیرفته نمی‌شود)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="87"/>
+        <location filename="core_strings.py" line="88"/>
         <source>warped raster: gtiff (tiled, DEFLATE), cog (cloud-optimised, with overviews) or vrt (a warped VRT reading the target, written as registered.vrt)</source>
         <translation>رستر تبدیل‌شده: gtiff (کاشی‌شده، DEFLATE)، cog (بهینه برای ابر، با نماهای کلی) یا vrt (یک VRT تبدیل‌شده که تصویر هدف را می‌خواند، با نام registered.vrt)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="95"/>
+        <location filename="core_strings.py" line="96"/>
         <source>how pixels outside the target are marked: auto (the target&apos;s nodata or collar value, NaN for floats, else an alpha band, so valid zeros stay valid), alpha, or nodata</source>
         <translation>نحوهٔ علامت‌گذاری پیکسل‌های بیرون از تصویر هدف: خودکار (مقدار nodata یا حاشیهٔ هدف، NaN برای اعداد اعشاری، وگرنه باند آلفا، تا صفرهای معتبر معتبر بمانند)، alpha یا nodata</translation>
     </message>
     <message>
-        <location filename="../processing/options.py" line="54"/>
+        <location filename="../processing/options.py" line="59"/>
         <source>empty</source>
         <translation>خالی</translation>
     </message>
@@ -1626,6 +1681,46 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <location filename="../processing/register_algorithm.py" line="302"/>
         <source>May help: {} ({}).</source>
         <translation>شاید کمک کند: {} ({}).</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="80"/>
+        <source>Target&apos;s own pixels, georeferencing moved (a shift; no resampling)</source>
+        <translation>پیکسل‌های خود تصویر هدف با زمین‌مرجع جابه‌جاشده (جابه‌جایی؛ بدون بازنمونه‌برداری)</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="151"/>
+        <source>Windows per side of the grid over the overlap.</source>
+        <translation>تعداد پنجره‌ها در هر ضلع شبکه روی ناحیهٔ هم‌پوشانی.</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="154"/>
+        <source>Share of a window&apos;s pixels that must be valid in both images.</source>
+        <translation>سهمی از پیکسل‌های پنجره که باید در هر دو تصویر معتبر باشد.</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="155"/>
+        <source>Lowest accepted phase-correlation peak of a window.</source>
+        <translation>کمترین قلهٔ پذیرفتنی همبستگی فاز در یک پنجره.</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="236"/>
+        <source>Strongest keypoints kept per image (XFeat&apos;s default).</source>
+        <translation>تعداد قوی‌ترین نقاط کلیدی نگه‌داشته در هر تصویر (پیش‌فرض XFeat).</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="237"/>
+        <source>Cosine similarity a mutual nearest neighbour needs (XFeat&apos;s default).</source>
+        <translation>شباهت کسینوسی لازم برای نزدیک‌ترین همسایهٔ دوسویه (پیش‌فرض XFeat).</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="238"/>
+        <source>Turns of the target tried, either way, in steps of 45 degrees: 0 when the target is upright on the reference (resampled onto it by its georeferencing), 180 for any rotation.</source>
+        <translation>چرخش‌های آزموده‌شدهٔ تصویر هدف در هر دو سو، با گام ۴۵ درجه: ۰ وقتی هدف روی مرجع راست ایستاده است (با زمین‌مرجع خودش روی آن بازنمونه‌برداری شده)، ۱۸۰ برای هر چرخشی.</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="239"/>
+        <source>Both images are matched shrunk alike to at most this many pixels each: XFeat describes at an eighth of the resolution it is given, and the full-resolution refinement restores the precision (four times faster than at the 4 Mpx working size).</source>
+        <translation>هر دو تصویر به یک نسبت تا حداکثر این تعداد پیکسل کوچک و سپس تطبیق داده می‌شوند: XFeat در یک‌هشتم تفکیک‌پذیری ورودی توصیف می‌کند و پالایش با تفکیک‌پذیری کامل دقت را بازمی‌گرداند (چهار برابر سریع‌تر از اندازهٔ کاری ۴ مگاپیکسل).</translation>
     </message>
 </context>
 </TS>

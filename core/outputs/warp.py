@@ -42,6 +42,7 @@ from ..options import FORMAT, GRID, RESAMPLING, OutputOptions
 from ..parallel import THREADS
 from ..progress import Monitor
 from .model_vrt import scratch_dir, write_model_vrt
+from .moved import write_moved
 from .spline_warp import spline_applies, spline_rows
 from .tags import verdict_tags
 
@@ -83,6 +84,9 @@ def check_output_options(output: OutputOptions, target, path: str) -> None:
     ``path``, and a nodata value fits its pixel type (the target's, ``target`` a
     :class:`~hamta.core.io.raster.RasterInfo`). Raises ``ValueError`` naming the option."""
     fmt = output_format(path, output.format)
+    if output.grid == "target" and (fmt == "vrt" or output.crs is not None or output.resolution is not None):
+        raise ValueError("the output grid 'target' keeps the target's pixels in the reference CRS: it takes no "
+                         "output CRS or resolution, and is written as GeoTIFF or COG, not VRT")
     if output.creation_options and fmt == "vrt":
         raise ValueError("creation options (--co) apply to the gtiff and cog formats, not to a warped VRT")
     if output.creation_options:
@@ -210,6 +214,10 @@ def write_warped(path: str, result, output: OutputOptions = OutputOptions(), mon
     :func:`output_format` picks; returns that format."""
     monitor = monitor or Monitor()
     fmt = output_format(path, output.format)
+    if output.grid == "target":
+        write_moved(path, result, _creation(COG_OPTIONS if fmt == "cog" else GTIFF_OPTIONS, output), fmt == "cog",
+                    monitor)
+        return fmt
     transform, width, height, crs = output_grid(result, output.grid, output.resolution, output.crs)
     warp_crs = crs or PLACEHOLDER_CRS
     with scratch_dir(scratch) as tmp:

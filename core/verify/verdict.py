@@ -172,6 +172,12 @@ def corroborate(result, other, distance: float):
     return dataclasses.replace(result, verification=v)
 
 
+def error_bound(v) -> float:
+    """The check's bound on a model's error (reference px) from its :class:`Verification`; infinite where it
+    gave none."""
+    return float("inf") if v.error_bound_px is None else v.error_bound_px
+
+
 def result_rank(result):
     """Sort key of results, best last: the verdict, then agreeing sites, then the smaller error bound."""
     v = result.verification

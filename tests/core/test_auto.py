@@ -1,4 +1,6 @@
 """``auto``: the fast path decides first, escalation when it does not verify, every attempt reported."""
+import dataclasses
+
 import pytest
 
 from hamta.bench.families import CaseSpec, build_case
@@ -101,3 +103,67 @@ def test_a_wrong_method_name_or_parameter_is_the_callers_error_not_a_crash(demo_
         register(demo_pair["target"], demo_pair["reference"], "nope")
     with pytest.raises(ValueError, match="has no parameter"):
         register(demo_pair["target"], demo_pair["reference"], "sift", params={"wobble": 1})
+
+
+@dataclasses.dataclass(frozen=True)
+class _Check:
+    verdict: str
+    error_bound_px: float
+    n_agree: int = 12
+    reasons: tuple = ()
+
+    @property
+    def verified(self):
+        return self.verdict == "verified"
+
+
+@dataclasses.dataclass(frozen=True)
+class _Timings:
+    auto_total: float = 0.0
+
+
+@dataclasses.dataclass(frozen=True)
+class _Result:
+    method: str
+    verification: _Check
+    timings: _Timings = _Timings()
+    auto: object = None
+
+    @property
+    def verified(self):
+        return self.verification.verified
+
+
+def _auto(outcomes, chain):
+    """``register_auto`` over ``chain`` where each method's result is ``outcomes[method]`` (verdict, bound)."""
+    from hamta.core import RegisterOptions
+    from hamta.core.progress import Monitor
+
+    def attempt(method, params, monitor, refine):
+        return _Result(method, _Check(*outcomes[method]))
+
+    return auto_module.register_auto(attempt, RegisterOptions(), Monitor(), chain)
+
+
+CHAIN_37 = (Step("shift", {}, "t"), Step("sift", {}, "t", precise=True), Step("xmodal", {}, "t", precise=True),
+            Step("cfog", {}, "t"))
+
+
+def test_a_verified_but_loose_result_lets_the_precise_steps_beat_it():
+    result = _auto({"shift": ("verified", 1.4), "sift": ("verified", 0.9), "xmodal": ("verified", 0.35)}, CHAIN_37)
+    assert result.method == "xmodal"
+    attempts = result.auto.attempts
+    assert [a.method for a in attempts] == ["shift", "sift", "xmodal"] and attempts[2].accepted
+    assert "0.35 px against sift's 0.90 px: kept" in attempts[2].reason
+
+
+def test_the_tighter_bound_is_kept_whatever_comes_later():
+    result = _auto({"shift": ("verified", 0.8), "sift": ("verified", 1.2), "xmodal": ("suspect", 0.2)}, CHAIN_37)
+    attempts = result.auto.attempts
+    assert result.method == "shift" and attempts[0].accepted
+    assert "not kept" in attempts[1].reason and attempts[2].outcome == "suspect" and len(attempts) == 3
+
+
+def test_a_precise_first_answer_ends_auto():
+    result = _auto({"shift": ("verified", 0.3)}, CHAIN_37)
+    assert result.method == "shift" and [a.method for a in result.auto.attempts] == ["shift"]

@@ -54,3 +54,22 @@ def test_outliers_disagree_with_their_neighbours_and_smoothing_keeps_a_gradient(
 def test_bad_local_settings_are_refused(bad):
     with pytest.raises(ValueError):
         LocalParams(**bad)
+
+
+def test_on_a_shift_the_local_correction_is_never_worse_than_the_global_model(landsat, tmp_path):
+    import rasterio
+    from affine import Affine
+
+    with rasterio.open(landsat) as ds:
+        profile, data = ds.profile, ds.read()
+        profile.update(transform=ds.transform * Affine.translation(-6.4, 3.7))
+    target = str(tmp_path / "moved.tif")
+    with rasterio.open(target, "w", **profile) as out:
+        out.write(data)
+    whole = register(target, landsat, method="shift")
+    local = register(target, landsat, method="shift", options=RegisterOptions(local=True))
+    assert whole.verified and local.verified
+    assert local.verification.error_bound_px <= whole.verification.error_bound_px
+    if local.local is None:
+        assert any(n.startswith("local correction not kept") for n in local.notes)
+        assert local.model.matrix.tolist() == whole.model.matrix.tolist()
