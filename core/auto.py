@@ -32,11 +32,14 @@ from .verify import corroborate, corroborating, error_bound, result_rank
 AUTO = "auto"
 
 
-# A verified result whose check bounds its error above this (reference px) lets the next precise steps try
-# to do better; the one with the smaller bound is kept. On NAIP pairs five to seven years apart, the shift
-# verified with bounds of 0.46-1.93 px (errors 0.29-1.66 px) where xmodal's bounds were 0.33-0.91 px
-# (errors 0.18-0.57 px).
-PRECISE_PX = 0.5
+# The shift's verified result whose check bounds its error above this share of the tolerance (0.5 px of the
+# default 3) lets the precise steps try to do better; the one with the smaller bound is kept. On NAIP pairs
+# five to seven years apart, the shift verified with bounds of 0.46-1.93 px (errors 0.29-1.66 px) where
+# xmodal's bounds were 0.33-0.91 px (errors 0.18-0.57 px). Relative, because a user who asks for 15 px does
+# not want the time spent on a tenth of a pixel. Only after the shift: after SIFT (refined at full
+# resolution, the fast path of pairs without georeferencing) xmodal and XFeat took a small optical pair's
+# bound from 3.63 to 3.21 px in 9 s more.
+PRECISE_SHARE = 1 / 6
 
 
 @dataclass(frozen=True)
@@ -44,14 +47,16 @@ class Step:
     """One method ``auto`` may try, with its parameters, what it is for, and its refinement when the
     user leaves it on 'auto' ('on': SIFT keypoints are located to a few hundredths of a pixel; full-
     resolution correlation around them makes the result three to five times more accurate for a
-    few tenths of a second, measured on the rotation family). ``precise``: a step worth trying after a
-    verified result whose bound exceeds :data:`PRECISE_PX` (fast, and as accurate as any)."""
+    few tenths of a second, measured on the rotation family). ``rough``: a fast step whose verified result,
+    when the check bounds its error above :data:`PRECISE_SHARE` of the tolerance, the ``precise`` steps after
+    it try to beat (fast, and as accurate as any)."""
 
     method: str
     params: Mapping[str, object]
     why: str
     refine: str = "auto"
     precise: bool = False
+    rough: bool = False
 
 
 CHAIN = (
@@ -63,7 +68,8 @@ CHAIN = (
     Step("cfog", {"max_rotation_deg": 180.0}, "across modalities at any rotation, dense (slow)"),
 )
 # Refinement 'on': the windows are few, the full-resolution grid gives the fit its spread and precision.
-SHIFT_STEP = Step("shift", {}, "both rasters georeferenced: the offset left, by correlation in windows", refine="on")
+SHIFT_STEP = Step("shift", {}, "both rasters georeferenced: the offset left, by correlation in windows", refine="on",
+                  rough=True)
 
 
 def chain_for(plan_mode: str, short: bool = False):
@@ -91,9 +97,10 @@ def learned_steps(prior: bool) -> tuple:
 
 
 def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
-    """Try ``chain``'s steps in order; return the first verified result whose error bound is within
-    :data:`PRECISE_PX`, else the verified result with the smallest bound (the precise steps after the first
-    verified result try to beat it), else the best unverified one.
+    """Try ``chain``'s steps in order; return the first verified result, else the best unverified one. When
+    the first verified result is a rough step's (the shift) and the check bounds its error above
+    :data:`PRECISE_SHARE` of ``options.tolerance_px``, the precise steps after it run until one is bounded
+    within that, and the verified result with the smallest bound is returned.
 
     ``options.auto_budget_s`` is a deadline: once spent, the running step is stopped (at its next
     progress report) and no further step starts. The first step is exempt, so that a budget shorter
@@ -106,6 +113,7 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
     attempts: List[Attempt] = []
     found = []
     best, chosen = None, None
+    polishing = None  # whether the first verified result came from a rough step (then the precise steps may beat it)
     for i, step in enumerate(chain):
         elapsed = time.perf_counter() - start
 
@@ -140,7 +148,9 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
             attempts[-1] = dataclasses.replace(attempts[-1], reason=compared(result, best))
         if better(result, best):
             best, chosen = result, len(attempts) - 1
-        if best.verified and bound(best) <= PRECISE_PX:
+        if result.verified and polishing is None:
+            polishing = step.rough
+        if best.verified and not (polishing and bound(best) > PRECISE_SHARE * options.tolerance_px):
             break
     monitor.report(1.0, "registered")
     if best is None:

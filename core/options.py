@@ -83,7 +83,7 @@ GRID = Choice("grid", {
     "auto": "Automatic",
     "reference": "Reference pixel grid",
     "native": "Target's native resolution",
-    "target": "Target's own pixels, georeferencing moved (a shift; no resampling)",
+    "target": "Target's own pixels (not resampled)",
 }, "auto")
 
 REFINE = Choice("refine", {

@@ -77,7 +77,7 @@ QT_TRANSLATE_NOOP('RegisterAlgorithm', "output pixel grid: the reference's, the 
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Automatic')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Reference pixel grid')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', "Target's native resolution")
-QT_TRANSLATE_NOOP('RegisterAlgorithm', "Target's own pixels, georeferencing moved (a shift; no resampling)")
+QT_TRANSLATE_NOOP('RegisterAlgorithm', "Target's own pixels (not resampled)")
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Output pixel size (output CRS units)')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', "output pixel size in output CRS units (overrides the grid's)")
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'from the pixel grid')

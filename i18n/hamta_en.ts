@@ -1662,7 +1662,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     </message>
     <message>
         <location filename="core_strings.py" line="80"/>
-        <source>Target&apos;s own pixels, georeferencing moved (a shift; no resampling)</source>
+        <source>Target&apos;s own pixels (not resampled)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
@@ -1698,6 +1698,16 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="core_strings.py" line="239"/>
         <source>Both images are matched shrunk alike to at most this many pixels each: XFeat describes at an eighth of the resolution it is given, and the full-resolution refinement restores the precision (four times faster than at the 4 Mpx working size).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="152"/>
+        <source>Side of each correlation window, working px (halved for small overlaps).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="153"/>
+        <source>Longest side of the coarse whole-overlap correlation, px.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -176,7 +176,7 @@
     <message>
         <location filename="../plugin/action.py" line="71"/>
         <source>Auto-georeference &apos;{}&apos;: starting</source>
-        <translation>زمین‌مرجع‌سازی خودکار &apos;{}&apos;: آغاز</translation>
+        <translation>زمین‌مرجع‌سازی خودکار '{}': آغاز</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="76"/>
@@ -186,7 +186,7 @@
     <message>
         <location filename="../plugin/action.py" line="84"/>
         <source>Auto-georeference &apos;{}&apos;: {}</source>
-        <translation>زمین‌مرجع‌سازی خودکار &apos;{}&apos;: {}</translation>
+        <translation>زمین‌مرجع‌سازی خودکار '{}': {}</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="101"/>
@@ -201,17 +201,17 @@
     <message>
         <location filename="../plugin/action.py" line="142"/>
         <source>&apos;{}&apos; is georeferenced and verified{}.</source>
-        <translation>&apos;{}&apos; زمین‌مرجع شد و درستی آن تأیید شد{}.</translation>
+        <translation>'{}' زمین‌مرجع شد و درستی آن تأیید شد{}.</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="143"/>
         <source>&apos;{}&apos; is georeferenced but NOT VERIFIED; check it before use.</source>
-        <translation>&apos;{}&apos; زمین‌مرجع شد اما تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
+        <translation>'{}' زمین‌مرجع شد اما تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="187"/>
         <source>&apos;{}&apos; onto &apos;{}&apos;</source>
-        <translation>&apos;{}&apos; روی &apos;{}&apos;</translation>
+        <translation>'{}' روی '{}'</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="190"/>
@@ -1684,8 +1684,8 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     </message>
     <message>
         <location filename="core_strings.py" line="80"/>
-        <source>Target&apos;s own pixels, georeferencing moved (a shift; no resampling)</source>
-        <translation>پیکسل‌های خود تصویر هدف با زمین‌مرجع جابه‌جاشده (جابه‌جایی؛ بدون بازنمونه‌برداری)</translation>
+        <source>Target&apos;s own pixels (not resampled)</source>
+        <translation>پیکسل‌های خود تصویر هدف (بدون بازنمونه‌برداری)</translation>
     </message>
     <message>
         <location filename="core_strings.py" line="151"/>
@@ -1721,6 +1721,16 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <location filename="core_strings.py" line="239"/>
         <source>Both images are matched shrunk alike to at most this many pixels each: XFeat describes at an eighth of the resolution it is given, and the full-resolution refinement restores the precision (four times faster than at the 4 Mpx working size).</source>
         <translation>هر دو تصویر به یک نسبت تا حداکثر این تعداد پیکسل کوچک و سپس تطبیق داده می‌شوند: XFeat در یک‌هشتم تفکیک‌پذیری ورودی توصیف می‌کند و پالایش با تفکیک‌پذیری کامل دقت را بازمی‌گرداند (چهار برابر سریع‌تر از اندازهٔ کاری ۴ مگاپیکسل).</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="152"/>
+        <source>Side of each correlation window, working px (halved for small overlaps).</source>
+        <translation>ضلع هر پنجرهٔ همبستگی، به پیکسل کاری (برای هم‌پوشانی‌های کوچک نصف می‌شود).</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="153"/>
+        <source>Longest side of the coarse whole-overlap correlation, px.</source>
+        <translation>بلندترین ضلع همبستگی درشت کل ناحیهٔ هم‌پوشانی، به پیکسل.</translation>
     </message>
 </context>
 </TS>

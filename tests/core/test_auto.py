@@ -145,8 +145,8 @@ def _auto(outcomes, chain):
     return auto_module.register_auto(attempt, RegisterOptions(), Monitor(), chain)
 
 
-CHAIN_37 = (Step("shift", {}, "t"), Step("sift", {}, "t", precise=True), Step("xmodal", {}, "t", precise=True),
-            Step("cfog", {}, "t"))
+CHAIN_37 = (Step("shift", {}, "t", rough=True), Step("sift", {}, "t", precise=True),
+            Step("xmodal", {}, "t", precise=True), Step("cfog", {}, "t"))
 
 
 def test_a_verified_but_loose_result_lets_the_precise_steps_beat_it():
@@ -167,3 +167,19 @@ def test_the_tighter_bound_is_kept_whatever_comes_later():
 def test_a_precise_first_answer_ends_auto():
     result = _auto({"shift": ("verified", 0.3)}, CHAIN_37)
     assert result.method == "shift" and [a.method for a in result.auto.attempts] == ["shift"]
+
+
+def test_after_a_verified_fast_path_that_is_not_rough_nothing_more_runs():
+    result = _auto({"sift": ("verified", 2.0)}, CHAIN_37[1:])
+    assert result.method == "sift" and [a.method for a in result.auto.attempts] == ["sift"]
+
+
+def test_the_precision_asked_for_is_a_share_of_the_tolerance():
+    from hamta.core import RegisterOptions
+    from hamta.core.progress import Monitor
+
+    def attempt(method, params, monitor, refine):
+        return _Result(method, _Check(*{"shift": ("verified", 1.9), "sift": ("verified", 0.9)}[method]))
+
+    loose = auto_module.register_auto(attempt, RegisterOptions(tolerance_px=15.0), Monitor(), CHAIN_37)
+    assert loose.method == "shift" and len(loose.auto.attempts) == 1
