@@ -78,6 +78,7 @@ def cluster(tmp_path):
         yield address, processes.procs[1:]
 
 
+@pytest.mark.processes
 def test_a_worker_killed_mid_batch_loses_no_pair_and_corrupts_no_output(tmp_path, demo_pair, cluster):
     address, workers = cluster
     folder = _targets(tmp_path, demo_pair, 7)

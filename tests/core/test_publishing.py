@@ -67,6 +67,7 @@ def results(tmp_path_factory, demo_pair):
     return out
 
 
+@pytest.mark.processes
 def test_sigkill_at_every_step_of_publishing_leaves_the_old_set_or_the_new_one(tmp_path, results, demo_pair):
     (old, old_options, _), (new, new_options, new_pickle) = results
     steps = None
