@@ -179,7 +179,7 @@ def better(result, best) -> bool:
 def compared(result, best) -> str:
     """Why a verified result after ``best`` (verified) is kept or not, in the attempts list."""
     verb = "kept" if better(result, best) else "not kept"
-    return (f"verified, error bound {bound(result):.2f} px against {best.method}'s {bound(best):.2f} px: {verb}")
+    return f"verified, error bound {bound(result):.2f} px against {best.method}'s {bound(best):.2f} px: {verb}"
 
 
 def tried(step: Step, outcome: str, reason: str, t0: Optional[float] = None) -> Attempt:

@@ -129,6 +129,13 @@ def _hamta(args, out: str, repeats: int):
     return statistics.median(r[0] for r in runs), statistics.median(r[1] for r in runs), runs[-1][2], report
 
 
+def _timed(commands, printed=None):
+    """(median wall s, median peak MB) of ``commands`` (argument lists), each run in a fresh process; the lines
+    they printed are added to ``printed`` when given."""
+    runs = [measured(command, env=_installed_env(), printed=printed) for command in commands]
+    return statistics.median(r[0] for r in runs), statistics.median(r[1] for r in runs)
+
+
 def _installed_env() -> dict:
     """This environment without ``PYTHONDONTWRITEBYTECODE`` (see the module's docstring)."""
     return {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
@@ -159,16 +166,12 @@ def _pair(kind: str, name: str, folder: str, data_dir: str) -> dict:
            "registration_s": _registration_s(report), "method": report["method"],
            "error_px": float(np.sqrt(np.mean(case.errors(_model(report)) ** 2))), "stages": report["timings_s"]}
     if kind == "small-optical":
-        times, peaks = [], []
         matrix = os.path.join(folder, f"{family}-{pair}-opencv.txt")
-        for _ in range(REPEATS):
-            s, p, c = measured([sys.executable, "-c", OPENCV_SCRIPT, case.target, case.reference,
-                                os.path.join(folder, f"{family}-{pair}-opencv.png"), matrix], env=_installed_env())
-            times.append(s)
-            peaks.append(p)
+        seconds, mb = _timed([[sys.executable, "-c", OPENCV_SCRIPT, case.target, case.reference,
+                               os.path.join(folder, f"{family}-{pair}-opencv.png"), matrix]] * REPEATS)
         m = np.vstack([np.loadtxt(matrix), [0, 0, 1]])
         peer = _model({"model": {"type": "affine", "target_px_to_reference_px": m}})
-        row.update(peer="OpenCV script", peer_s=statistics.median(times), peer_mb=statistics.median(peaks),
+        row.update(peer="OpenCV script", peer_s=seconds, peer_mb=mb,
                    peer_error_px=float(np.sqrt(np.mean(case.errors(peer) ** 2))))
     return row
 
@@ -213,16 +216,13 @@ def _georeferenced(folder: str, data_dir: str) -> dict:
            "error_px": float(np.sqrt(np.mean(np.sum(err ** 2, axis=1)))), "stages": report["timings_s"]}
     python = os.environ.get("HAMTA_AROSICS_PYTHON")
     if python:
-        times, peaks, printed = [], [], []
-        for i in range(REPEATS):
-            s, p, c = measured([python, "-c", AROSICS_SCRIPT, reference, target,
-                                os.path.join(folder, f"arosics-{i}.tif")], env=_installed_env(), printed=printed)
-            times.append(s)
-            peaks.append(p)
+        printed = []
+        outputs = [os.path.join(folder, f"arosics-{i}.tif") for i in range(REPEATS)]
+        seconds, mb = _timed([[python, "-c", AROSICS_SCRIPT, reference, target, out] for out in outputs], printed)
         shift = _arosics_shift(printed)
         # AROSICS moves the target by (x_px, y_px) of its pixels; the georeferencing was off by SHIFT_PX.
         error = None if shift is None else float(np.hypot(shift[0] + SHIFT_PX[0], shift[1] + SHIFT_PX[1]))
-        row.update(peer="AROSICS", peer_s=statistics.median(times), peer_mb=statistics.median(peaks),
+        row.update(peer="AROSICS", peer_s=seconds, peer_mb=mb,
                    peer_error_px=error)
     return row
 
@@ -240,15 +240,10 @@ def _inter1(name: str, folder: str) -> dict:
     python = os.environ.get("HAMTA_AROSICS_PYTHON")
     if python and name != "untouched":
         script = AROSICS_LOCAL_SCRIPT if name == "local" else AROSICS_SCRIPT
-        times, peaks = [], []
-        for i in range(repeats):
-            s, p, c = measured([python, "-c", script, reference, target, os.path.join(folder, f"arosics-{name}.tif")],
-                               env=_installed_env())
-            times.append(s)
-            peaks.append(p)
-        row.update(peer="AROSICS " + ("COREG_LOCAL" if name == "local" else "COREG"), peer_s=statistics.median(times),
-                   peer_mb=statistics.median(peaks),
-                   peer_error_px=residual(reference, os.path.join(folder, f"arosics-{name}.tif")))
+        written = os.path.join(folder, f"arosics-{name}.tif")
+        seconds, mb = _timed([[python, "-c", script, reference, target, written]] * repeats)
+        row.update(peer="AROSICS " + ("COREG_LOCAL" if name == "local" else "COREG"), peer_s=seconds, peer_mb=mb,
+                   peer_error_px=residual(reference, written))
     return row
 
 

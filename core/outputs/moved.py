@@ -50,8 +50,7 @@ def write_moved(path: str, result, creation: dict, cog: bool, monitor: Monitor) 
     monitor.report(0.05, "writing raster")
     staged = path + ".moved.tif" if cog else path
     try:
-        options = {k: v for k, v in creation.items() if not cog}
-        rasterio.shutil.copy(result.target.path, staged, driver="GTiff", **options)
+        rasterio.shutil.copy(result.target.path, staged, driver="GTiff", **({} if cog else creation))
         monitor.check()
         with rasterio.open(staged, "r+") as dst:
             dst.transform = transform
