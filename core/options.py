@@ -30,6 +30,7 @@ class Choice:
     labels: Mapping[str, str]
     default: Optional[str]
     aliases: Mapping[str, str] = None
+    open_value: Optional[str] = None  # the value that leaves the option open (stored as None)
 
     @property
     def values(self) -> Tuple[str, ...]:
@@ -61,8 +62,10 @@ MODEL = Choice("model", {
     "polynomial-3": "Polynomial 3",
     "tps": "Thin plate spline",
     "linear": "Linear (scale and shift per axis)",
-}, "affine", aliases={"helmert": "similarity", "polynomial-1": "affine", "poly1": "affine", "poly2": "polynomial-2",
-                      "poly3": "polynomial-3", "homography": "projective", "thin-plate-spline": "tps"})
+    "auto": "Automatic (chosen by the check)",
+}, "auto", open_value="auto", aliases={"helmert": "similarity", "polynomial-1": "affine", "poly1": "affine",
+                                      "poly2": "polynomial-2", "poly3": "polynomial-3", "homography": "projective",
+                                      "thin-plate-spline": "tps"})
 
 RESAMPLING = Choice("resampling", {
     "nearest": "Nearest neighbour",
@@ -117,13 +120,17 @@ ROBUST = Choice("robust", {
     "triplets": "Cluster the transforms of match triplets",
 }, None)
 
-MODEL_CHOICES = MODEL.values
+MODEL_CHOICES = tuple(v for v in MODEL.values if v != MODEL.open_value)  # the models a fit can take
 RESAMPLING_CHOICES = RESAMPLING.values
 
 
 def canonical_model(name: str) -> str:
     """Validate a model name (QGIS-style aliases accepted) and return its canonical spelling."""
-    return MODEL.check(name)
+    kind = MODEL.check(name)
+    if kind == MODEL.open_value:
+        raise ValueError(f"{name!r} leaves the model to the method and the check; a fit needs one of "
+                         f"{', '.join(MODEL_CHOICES)}")
+    return kind
 
 
 LABEL_CHARS = 44  # longer labels make the parameters panel of an 800 px QGIS dialog scroll sideways
@@ -222,7 +229,8 @@ def check_options(options) -> None:
         if value is None and f.default is None:
             continue
         if spec.choice is not None:
-            object.__setattr__(options, f.name, spec.choice.check(value))
+            value = spec.choice.check(value)
+            object.__setattr__(options, f.name, None if value == spec.choice.open_value else value)
         elif kind is bool:
             object.__setattr__(options, f.name, _flag(f.name, value))
         elif kind is int:
@@ -242,8 +250,9 @@ class RegisterOptions:
     """
 
     model: Optional[str] = option(
-        None, "Transformation", "transform model: " + ", ".join(MODEL.values), advanced=False, choice=MODEL,
-        unset="the method's, affine for most")
+        None, "Transformation", "transform model: " + ", ".join(MODEL.values) + " (the method's, affine for most, or "
+        "polynomial-2 where the points bend away from it and the check bounds its error more tightly)",
+        advanced=False, choice=MODEL, unset="automatic")
     max_working_pixels: int = option(
         4_000_000, "Working image size (pixels)", "pixel budget of the images matched (larger rasters are read "
         "decimated, then refined at full resolution)", minimum=4096)

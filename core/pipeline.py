@@ -24,6 +24,7 @@ from .io.working import Plan, WorkingImage, central_longitude, prepare_working_i
 from .local import LocalParams, local_correction
 from .methods import get_method
 from .options import RegisterOptions, resolve_options
+from .order import HIGHER, bent_fit, keep_bent, order_note
 from .outcome import Timings
 from .progress import Clock, Monitor
 from .refine import refine_estimate
@@ -152,6 +153,7 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
     clock = Clock()
     spec = get_method(method)
     params = spec.make_params(params)
+    model_left_open = options.model is None and not options.local
     options = resolve_options(options, spec)
     tgt, ref = inputs.target_image, inputs.reference_image
     matches = spec.match(tgt, ref, params, monitor.span(0.0, 0.65), seed=options.seed)
@@ -166,7 +168,11 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
                                       monitor.span(0.7, 0.85))
     clock.lap("refine")
     monitor.report(0.85, "fitting")
-    fit = final_fit(options.model, estimate, options.max_gcps, crs_frame(inputs.plan, inputs.target, inputs.reference))
+    frame = crs_frame(inputs.plan, inputs.target, inputs.reference)
+    fit = final_fit(options.model, estimate, options.max_gcps, frame)
+    bent = None if not model_left_open else bent_fit(options.model, fit, estimate, inputs.target.width,
+                                                     inputs.target.height, options.tolerance_px, options.max_gcps,
+                                                     frame)
     clock.lap("fit")
     grid = None
     check = VerifyParams(tolerance_px=options.tolerance_px)
@@ -180,7 +186,14 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
         notes += [note] if note else []
     if verification is None:
         verification = verify(fit.model, inputs.target, inputs.target_bands, inputs.reference,
-                              inputs.reference_bands, check, monitor.span(0.93, 1.0))
+                              inputs.reference_bands, check, monitor.span(0.9, 0.95 if bent else 1.0))
+    if bent is not None:
+        second = verify(bent.model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands,
+                        check, monitor.span(0.95, 1.0))
+        kept = keep_bent(verification, second)
+        notes.append(order_note(options.model, verification, second, kept))
+        if kept:
+            fit, verification, options = bent, second, dataclasses.replace(options, model=HIGHER)
     clock.lap("verify")
     ref_info = inputs.reference
     to_map = (lambda xy: xy) if not ref_info.georeferenced else (lambda xy: pixel_to_map(ref_info.transform, xy))

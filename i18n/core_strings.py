@@ -2,8 +2,8 @@
 from qgis.PyQt.QtCore import QT_TRANSLATE_NOOP
 
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Transformation')
-QT_TRANSLATE_NOOP('RegisterAlgorithm', 'transform model: similarity, affine, projective, polynomial-2, polynomial-3, tps, linear')
-QT_TRANSLATE_NOOP('RegisterAlgorithm', "the method's, affine for most")
+QT_TRANSLATE_NOOP('RegisterAlgorithm', "transform model: similarity, affine, projective, polynomial-2, polynomial-3, tps, linear, auto (the method's, affine for most, or polynomial-2 where the points bend away from it and the check bounds its error more tightly)")
+QT_TRANSLATE_NOOP('RegisterAlgorithm', 'automatic')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Similarity (Helmert)')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Affine (polynomial 1)')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Projective')
@@ -11,6 +11,7 @@ QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Polynomial 2')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Polynomial 3')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Thin plate spline')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Linear (scale and shift per axis)')
+QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Automatic (chosen by the check)')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'Working image size (pixels)')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'pixel budget of the images matched (larger rasters are read decimated, then refined at full resolution)')
 QT_TRANSLATE_NOOP('RegisterAlgorithm', 'RANSAC tolerance (working px)')

@@ -92,7 +92,7 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
                                                      defaultValue=0))
         self.addParameter(QgsProcessingParameterBoolean(
             self.KEEP_UNVERIFIED, self.tr("Keep unverified results"), False))
-        for p in option_parameters(RegisterOptions(model="affine"), bands=False):
+        for p in option_parameters(RegisterOptions(), bands=False):
             self.addParameter(p)
         scheduler = QgsProcessingParameterString(self.SCHEDULER, self.tr("Dask scheduler (tls://host:port)"), "",
                                                  optional=True)

@@ -68,7 +68,7 @@ def _parameter(f, spec, kind: type, default, bands: bool):
     name, label = processing_key(f, spec), tr(spec.label)
     number = QgsProcessingParameterNumber
     if spec.choice is not None:
-        return enum_parameter(name, label, spec.choice, default)
+        return enum_parameter(name, label, spec.choice, spec.choice.open_value if default is None else default)
     if spec.kind.startswith("band:") and bands:
         return QgsProcessingParameterBand(name, label, parentLayerParameterName=spec.kind[5:], optional=True)
     if spec.kind == "crs":

@@ -122,7 +122,9 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
 
     def initAlgorithm(self, config=None):
         method = self.method()
-        d = RegisterOptions(model="affine") if method is None else resolve_options(RegisterOptions(), method)
+        # The model stays open (automatic: the method's, or the order the check chooses) unless the user picks one.
+        d = RegisterOptions() if method is None else dataclasses.replace(resolve_options(RegisterOptions(), method),
+                                                                         model=None)
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Target raster (to georeference)")))
         self.addParameter(QgsProcessingParameterRasterLayer(
             self.REFERENCE, self.tr("Reference raster or map layer (XYZ, WMS...)")))

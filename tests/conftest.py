@@ -108,7 +108,8 @@ def option_samples():
     for cls in (RegisterOptions, OutputOptions):
         for f, spec in option_fields(cls):
             if spec.choice is not None:
-                value = spec.choice.values[-1] if spec.choice.values[-1] != f.default else spec.choice.values[0]
+                values = [v for v in spec.choice.values if v != spec.choice.open_value]
+                value = values[-1] if values[-1] != f.default else values[0]
             elif spec.kind == "crs":
                 value = "EPSG:4326"
             elif spec.kind == "list":

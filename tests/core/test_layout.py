@@ -159,7 +159,7 @@ LAYERS = (
     ("core.descriptors",),
     ("core.matching",),
     ("core.refine", "core.verify"),
-    ("core.local", "core.methods", "core.auto", "core.result", "core.advice"),
+    ("core.local", "core.methods", "core.auto", "core.result", "core.advice", "core.order"),
     ("core.pipeline", "core.mapping", "core.outputs"),
     ("core.remote", "core.reference"),
     ("core.runner",),

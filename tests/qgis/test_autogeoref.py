@@ -202,7 +202,7 @@ def test_a_georeferenced_target_is_searched_where_it_says_unless_told_otherwise(
     assert dialog.target.currentLayer() is source and dialog.reference.currentLayer() is basemap
     assert not dialog.area.isChecked() and dialog.problem() is None
     job = dialog.job()
-    assert job.extent is None and job.options.target_georef == "auto" and job.options.model == "affine"
+    assert job.extent is None and job.options.target_georef == "auto" and job.options.model is None
     dialog.area.setChecked(True)  # the user says where to look: the target's own georeferencing is set aside
     assert dialog.job().options.target_georef == "ignore"
     dialog.reference.setLayer(source)

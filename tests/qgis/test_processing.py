@@ -95,10 +95,10 @@ def test_enum_labels_follow_the_core_choices(provider):
     alg = provider.algorithm("registersaroptical")
     defs = {p.name(): p for p in alg.parameterDefinitions()}
     assert defs["MODEL"].options() == [MODEL.labels[v] for v in MODEL.values]
-    assert defs["MODEL"].options()[defs["MODEL"].defaultValue()] == MODEL.labels["affine"]
+    assert defs["MODEL"].options()[defs["MODEL"].defaultValue()] == MODEL.labels["auto"]
     assert defs["RESAMPLING"].options()[defs["RESAMPLING"].defaultValue()] == RESAMPLING.labels["bilinear"]
     ndsift = {p.name(): p for p in provider.algorithm("registerndsift").parameterDefinitions()}
-    assert ndsift["MODEL"].options()[ndsift["MODEL"].defaultValue()] == MODEL.labels["similarity"]
+    assert ndsift["MODEL"].defaultValue() == MODEL.index("auto")  # the method's similarity, or the check's choice
 
 
 def test_every_method_algorithm_is_listed(provider):
@@ -289,6 +289,8 @@ def _processing_value(spec, value):
 
 @pytest.mark.parametrize("name", ["registerauto", "registersift", "batchregister"])
 def test_every_option_is_reachable_from_processing_with_the_same_default(provider, name):
+    from dataclasses import replace
+
     from qgis.core import QgsProcessingContext
 
     from hamta.core.options import OutputOptions, RegisterOptions, processing_key, resolve_options
@@ -297,7 +299,7 @@ def test_every_option_is_reachable_from_processing_with_the_same_default(provide
 
     alg = provider.algorithm(name).create()
     method = alg.method() if hasattr(alg, "method") else None
-    defaults = resolve_options(RegisterOptions(), method) if method else RegisterOptions(model="affine")
+    defaults = replace(resolve_options(RegisterOptions(), method), model=None) if method else RegisterOptions()
     context = QgsProcessingContext()
     options, _, output = register_settings(option_values(alg, {}, context))
     assert options == defaults and output == OutputOptions()
