@@ -1,8 +1,8 @@
 """The model's order chosen by the check: where the user left the model to the method and the points bend
 away from its linear model (a large footprint across projections, a scanned sheet), a second-order polynomial
 is fitted on the same points, checked by the same independent verification, and kept only when the check
-bounds its error more tightly (never by the fit's own residuals). Coordinates: target pixels to full-resolution
-reference pixels.
+judges it better (:func:`hamta.core.verify.beats`; never by the fit's own residuals). Coordinates: target
+pixels to full-resolution reference pixels.
 """
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ import numpy as np
 from .errors import InsufficientMatchesError
 from .estimation.models import MIN_POINTS
 from .estimation.robust import Estimate, FinalFit, final_fit
-from .verify import VERDICT_RANK, error_bound
+from .verify import error_bound
 
 HIGHER = "polynomial-2"
 LINEAR = ("similarity", "affine", "projective")
@@ -53,14 +53,6 @@ def bent_fit(kind: str, fit: FinalFit, estimate: Estimate, width: int, height: i
     if np.sqrt(np.mean(np.sum(difference ** 2, axis=1))) < MIN_BEND_SHARE * tolerance_px:
         return None
     return bent
-
-
-def keep_bent(linear, bent) -> bool:
-    """Whether the bent model's verification beats the linear model's: a better verdict, or the same verdict
-    with a smaller error bound."""
-    if VERDICT_RANK[bent.verdict] != VERDICT_RANK[linear.verdict]:
-        return VERDICT_RANK[bent.verdict] > VERDICT_RANK[linear.verdict]
-    return error_bound(bent) < error_bound(linear)
 
 
 def order_note(kind: str, linear, bent, kept: bool) -> str:

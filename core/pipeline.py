@@ -24,13 +24,13 @@ from .io.working import Plan, WorkingImage, central_longitude, prepare_working_i
 from .local import LocalParams, local_correction
 from .methods import get_method
 from .options import RegisterOptions, resolve_options
-from .order import HIGHER, bent_fit, keep_bent, order_note
+from .order import HIGHER, bent_fit, order_note
 from .outcome import Timings
 from .progress import Clock, Monitor
 from .refine import refine_estimate
 from .result import RegistrationResult, make_gcps, make_stats, params_dict
 from .types import Correspondences
-from .verify import VERDICT_RANK, VerifyParams, error_bound, verify
+from .verify import VerifyParams, beats, error_bound, verify
 
 
 @run_scope()
@@ -185,12 +185,10 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
         fit, grid, verification, note = keep_local(fit, local_fit, grid, inputs, check, monitor.span(0.9, 1.0))
         notes += [note] if note else []
     if verification is None:
-        verification = verify(fit.model, inputs.target, inputs.target_bands, inputs.reference,
-                              inputs.reference_bands, check, monitor.span(0.9, 0.95 if bent else 1.0))
+        verification = checked(fit.model, inputs, check, monitor.span(0.9, 0.95 if bent else 1.0))
     if bent is not None:
-        second = verify(bent.model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands,
-                        check, monitor.span(0.95, 1.0))
-        kept = keep_bent(verification, second)
+        second = checked(bent.model, inputs, check, monitor.span(0.95, 1.0))
+        kept = beats(second, verification)
         notes.append(order_note(options.model, verification, second, kept))
         if kept:
             fit, verification, options = bent, second, dataclasses.replace(options, model=HIGHER)
@@ -210,18 +208,18 @@ def keep_local(global_fit, local_fit, grid, inputs: Inputs, check: VerifyParams,
     """(fit, grid, verification, note): the local correction, unless the check bounds the global model's
     error more tightly (a flat field, a shift: the spline would only add the windows' noise); then the global
     model, the grid None and a note saying why."""
-    def verified(fit, mon):
-        return verify(fit.model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands,
-                      check, mon)
-
-    local = verified(local_fit, monitor.span(0.0, 0.5))
-    whole = verified(global_fit, monitor.span(0.5, 1.0))
-    if VERDICT_RANK[local.verdict] > VERDICT_RANK[whole.verdict] or (
-            local.verdict == whole.verdict and error_bound(local) <= error_bound(whole)):
+    local = checked(local_fit.model, inputs, check, monitor.span(0.0, 0.5))
+    whole = checked(global_fit.model, inputs, check, monitor.span(0.5, 1.0))
+    if beats(local, whole, ties=True):
         return local_fit, grid, local, None
     return global_fit, None, whole, (
         f"local correction not kept: the check bounds the global model's error at {error_bound(whole):.2f} px, the "
         f"local correction's at {error_bound(local):.2f} px ({local.verdict})")
+
+
+def checked(model, inputs: Inputs, check: VerifyParams, monitor: Monitor):
+    """The independent check of ``model`` (target px -> reference px) on the run's rasters."""
+    return verify(model, inputs.target, inputs.target_bands, inputs.reference, inputs.reference_bands, check, monitor)
 
 
 def local_params(options: RegisterOptions, similarity: str) -> LocalParams:

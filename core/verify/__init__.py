@@ -63,11 +63,11 @@ from .sites import (
     template_side,
 )
 from .statistics import binomial_tail, mann_whitney_greater
-from .verdict import VERDICT_RANK, corroborate, corroborating, error_bound, judge, model_distance, result_rank
+from .verdict import VERDICT_RANK, beats, corroborate, corroborating, error_bound, judge, model_distance, result_rank
 
-__all__ = ["NULL_PARTNERS", "NULL_TURNS", "VERDICTS", "VERDICT_RANK", "Verification", "VerifyParams", "binomial_tail",
-           "corroborate", "corroborating", "error_bound", "error_field", "fit_field", "footprint", "judge",
-           "mann_whitney_greater", "model_distance", "model_error", "overlap_grid", "result_rank", "site_grid",
+__all__ = ["NULL_PARTNERS", "NULL_TURNS", "VERDICTS", "VERDICT_RANK", "Verification", "VerifyParams", "beats",
+           "binomial_tail", "corroborate", "corroborating", "error_bound", "error_field", "fit_field", "footprint",
+           "judge", "mann_whitney_greater", "model_distance", "model_error", "overlap_grid", "result_rank", "site_grid",
            "template_side", "verify"]
 
 NULL_PARTNERS = 4  # other sites' target content each template is also compared with (wrong alignments)

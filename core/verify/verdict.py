@@ -172,6 +172,14 @@ def corroborate(result, other, distance: float):
     return dataclasses.replace(result, verification=v)
 
 
+def beats(v, w, ties: bool = False) -> bool:
+    """Whether verification ``v`` beats ``w``: a better verdict, or the same verdict with a smaller error bound
+    (or an equal one, with ``ties``)."""
+    if VERDICT_RANK[v.verdict] != VERDICT_RANK[w.verdict]:
+        return VERDICT_RANK[v.verdict] > VERDICT_RANK[w.verdict]
+    return error_bound(v) <= error_bound(w) if ties else error_bound(v) < error_bound(w)
+
+
 def error_bound(v) -> float:
     """The check's bound on a model's error (reference px) from its :class:`Verification`; infinite where it
     gave none."""

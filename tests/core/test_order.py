@@ -7,8 +7,8 @@ from pyproj import Transformer
 from rasterio.warp import Resampling, calculate_default_transform, reproject
 
 from hamta.core import RegisterOptions, register
-from hamta.core.order import f_tail, keep_bent
-from hamta.core.verify import Verification
+from hamta.core.order import f_tail
+from hamta.core.verify import Verification, beats
 
 from ..conftest import write_raster
 
@@ -81,7 +81,7 @@ def verification(verdict, bound):
     (("verified", 1.0), ("suspect", 0.2), False),
 ])
 def test_the_check_keeps_the_model_it_bounds_better(linear, bent, kept):
-    assert keep_bent(verification(*linear), verification(*bent)) is kept
+    assert beats(verification(*bent), verification(*linear)) is kept
 
 
 @pytest.mark.parametrize("f, d1, d2, tail", [(1.0, 6, 50, 0.435847688472), (10.0, 6, 48, 3.77313709234e-07),
