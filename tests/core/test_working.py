@@ -3,7 +3,9 @@ import numpy as np
 import pytest
 import rasterio
 from affine import Affine
+from rasterio.crs import CRS
 
+import hamta.core.io.working as working
 from hamta.bench.cases import reprojected_case, similarity_case
 from hamta.core import RegisterOptions, register
 from hamta.core.errors import ReferenceNotGeoreferenced
@@ -82,10 +84,6 @@ def test_same_crs_resampling_matches_gdal(to_src):
     """Between two north-up grids of one CRS the working target is resampled one axis at a time; it gives what
     GDAL's bilinear warp with NaN nodata and its nearest-neighbour mask give, at every valid pixel and in the
     mask, also where the destination reaches past the source."""
-    from rasterio.crs import CRS
-
-    import hamta.core.io.working as working
-
     rng = np.random.default_rng(0)
     y, x = np.mgrid[0:300, 0:400]
     img = (100 + 20 * np.sin(x / 7.0) * np.cos(y / 5.0) + rng.normal(0, 2, (300, 400))).astype(np.float32)
@@ -104,10 +102,6 @@ def test_same_crs_resampling_matches_gdal(to_src):
 def test_downsampling_between_grids_stays_with_gdal():
     """GDAL widens its bilinear kernel where the source is finer than the destination; a plain bilinear does
     not, so there the resampling is GDAL's own."""
-    from rasterio.crs import CRS
-
-    import hamta.core.io.working as working
-
     img = np.random.default_rng(1).normal(0, 1, (200, 200)).astype(np.float32)
     valid = np.ones(img.shape, bool)
     src, crs = Affine(10, 0, 0, 0, -10, 2000), CRS.from_epsg(32633)
