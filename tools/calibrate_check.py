@@ -41,7 +41,7 @@ import hamta.core.verify as verify_module
 from hamta.bench.families import build_case, default_data_dir, family_specs
 from hamta.bench.multimodal_set import CATEGORIES, build
 from hamta.core import RegisterOptions, run
-from hamta.core.verify import VerifyParams
+from hamta.core.verify import VERDICT_RANK, VerifyParams, second_look_worth
 from hamta.core.verify.verdict import judge
 
 # The thresholds fitted. The chance levels of a verified result (max_chance, max_z_chance, max_rank_chance) are not:
@@ -54,7 +54,6 @@ WIDE = {"max_chance": (1e-6, 1e-5, 1e-4, 1e-3), "max_z_chance": (1e-7, 1e-6, 1e-
         "max_rank_chance": (1e-3, 1e-2), "max_suspect_chance": (1e-3, 1e-2), "max_contradict": (0.4, 0.6)}
 DEFAULTS = {k: getattr(VerifyParams(), k) for k in {**GRID, **WIDE}}
 EVIDENCE = ("sites", "offsets", "peaks", "zero_z", "margins", "turned", "extent")
-RANK = {"verified": 2, "suspect": 1, "failed": 0}
 
 
 class Recorder:
@@ -144,12 +143,12 @@ def rejudge(attempt, overrides: dict):
     looks = attempt["looks"]
     base = dataclasses.replace(looks[0]["params"], **overrides)
     first = judge(**{k: looks[0][k] for k in EVIDENCE}, params=base)
-    if first.verdict == "verified" or not (first.n_agree >= 2 or first.z_hits >= 3):
+    if first.verdict == "verified" or not second_look_worth(first):
         return first.verdict
     if len(looks) < 2:
         return None
     second = judge(**{k: looks[1][k] for k in EVIDENCE}, params=base.second_look())
-    return second.verdict if RANK[second.verdict] > RANK[first.verdict] else first.verdict
+    return second.verdict if VERDICT_RANK[second.verdict] > VERDICT_RANK[first.verdict] else first.verdict
 
 
 def replay(record, overrides: dict) -> str:
@@ -167,7 +166,7 @@ def replay(record, overrides: dict) -> str:
         seen.append(current)
         if verdict == "verified":
             return ("right" if a["error_px"] <= tol else "wrong") + " verified"
-        if best is None or RANK[verdict] > RANK[best["verdict"]]:
+        if best is None or VERDICT_RANK[verdict] > VERDICT_RANK[best["verdict"]]:
             best = current
     if record["more"] and record["verdict"] == "verified":
         return "unknown"  # auto stopped at a verified attempt that these settings refuse: later steps unseen

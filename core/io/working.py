@@ -340,7 +340,7 @@ def _resample_axes(data, valid, to_src: Affine, shape):
     fraction of GDAL's time. Rows are done in strips, so that no large array is allocated per step."""
     rows = _Axis(shape[0], to_src.e, to_src.f, data.shape[0])
     cols = _Axis(shape[1], to_src.a, to_src.c, data.shape[1])
-    values = np.where(valid, data, 0).astype(np.float32)
+    values = np.where(valid, data, 0).astype(np.float32, copy=False)
     weights = valid.astype(np.float32)
     out, ok = np.zeros(shape, np.float32), np.zeros(shape, bool)
     for r0 in range(0, shape[0], _STRIP_ROWS):
