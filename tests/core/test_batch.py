@@ -234,13 +234,15 @@ def test_a_tls_scheduler_takes_the_client_credentials_from_dask_configuration(tl
         scheduler_map(address).__enter__()
 
 
-def test_an_unreachable_or_plain_tcp_scheduler_is_named_plainly(caplog):
+def test_an_unreachable_or_plain_tcp_scheduler_is_named_plainly(caplog, monkeypatch):
     import time
 
+    from hamta.core.batch import runner
     from hamta.core.batch.runner import SchedulerError
 
+    monkeypatch.setattr(runner, "CONNECT_TIMEOUT_S", 1)  # the wait is the only cost: 5 s by default
     t0 = time.perf_counter()
-    with pytest.raises(SchedulerError, match="tcp://127.0.0.1:1 did not accept a connection within 5 s"):
+    with pytest.raises(SchedulerError, match="tcp://127.0.0.1:1 did not accept a connection within 1 s"):
         run_batch([_job("t", "/nowhere")], SIFT, scheduler="tcp://127.0.0.1:1")
     assert time.perf_counter() - t0 < 15
     assert "tcp://127.0.0.1:1 is unauthenticated" in caplog.text

@@ -13,6 +13,7 @@ import rasterio
 from hamta.core import OutputError, OutputOptions, RegisterOptions, register
 from hamta.core.coords import pixel_to_map
 from hamta.core.io.raster import open_raster
+from hamta.core.methods import get_method, registry
 from hamta.core.options import MODEL_CHOICES, RESAMPLING_CHOICES
 from hamta.core.outputs import OutputPaths, write_outputs
 from hamta.core.outputs.model_vrt import write_model_vrt
@@ -22,8 +23,20 @@ from hamta.core.outputs.report import read_report
 
 @pytest.fixture(scope="module")
 def results(demo_pair):
-    return {m: register(demo_pair["target"], demo_pair["reference"], "sift", options=RegisterOptions(model=m))
-            for m in MODEL_CHOICES}
+    """The demo pair registered with each model; SIFT matches once (these tests are about the outputs), every
+    model is fitted and checked by the pipeline."""
+    sift = get_method("sift")
+    found = []
+
+    def match_once(*args, **kwargs):
+        if not found:
+            found.append(sift.match(*args, **kwargs))
+        return found[0]
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setitem(registry._REGISTRY, "sift", dataclasses.replace(sift, match=match_once))
+        return {m: register(demo_pair["target"], demo_pair["reference"], "sift", options=RegisterOptions(model=m))
+                for m in MODEL_CHOICES}
 
 
 def test_qgs_double_formats_like_qgis():

@@ -415,7 +415,10 @@ BATCH_CASES = {
 
 
 @pytest.mark.parametrize("case", sorted(BATCH_CASES))
-def test_bad_batches_are_refused_before_any_work(case, tmp_path, pair, capsys):
+def test_bad_batches_are_refused_before_any_work(case, tmp_path, pair, capsys, monkeypatch):
+    from hamta.core.batch import runner
+
+    monkeypatch.setattr(runner, "CONNECT_TIMEOUT_S", 1)  # an unreachable scheduler's wait, 5 s by default
     rows, extra, code, pattern = BATCH_CASES[case]
     out, jobs, outside = tmp_path / "out", tmp_path / "jobs.csv", tmp_path / "outside"
     if rows is None:
