@@ -81,18 +81,18 @@ def cluster(tmp_path):
 @pytest.mark.processes
 def test_a_worker_killed_mid_batch_loses_no_pair_and_corrupts_no_output(tmp_path, demo_pair, cluster):
     address, workers = cluster
-    folder = _targets(tmp_path, demo_pair, 7)
+    folder = _targets(tmp_path, demo_pair, 5)
     jobs = read_jobs(str(folder), str(tmp_path / "out"), demo_pair["reference"])
     seen = []
 
-    def kill_after_three(fraction, message):
+    def kill_after_two(fraction, message):
         seen.append(message)
-        if sum("pairs," in m for m in seen) == 3 and workers[0].poll() is None:
+        if sum("pairs," in m for m in seen) == 2 and workers[0].poll() is None:
             workers[0].send_signal(signal.SIGKILL)
 
-    result = run_batch(jobs, SIFT, scheduler=address, progress=kill_after_three)
+    result = run_batch(jobs, SIFT, scheduler=address, progress=kill_after_two)
     assert workers[0].poll() is not None  # the worker really died mid-batch
-    assert result.counts()["verified"] == 7, [r["message"] for r in result.records if r["status"] != "verified"]
+    assert result.counts()["verified"] == 5, [r["message"] for r in result.records if r["status"] != "verified"]
     for r in result.records:
         manifest = json.loads(open(os.path.join(r["out"], ".hamta-manifest.json")).read())
         report = json.loads(open(os.path.join(r["out"], "report.json")).read())

@@ -57,7 +57,7 @@ def test_installed_cli_registers_and_benchmarks(installed, tmp_path, demo_pair, 
     assert report["method"] == "sift" and report["stats"]["n_gcps"] >= 20
     assert str(venv) in _run([venv / "bin" / "python", "-c", "import hamta; print(hamta.__file__)"], cwd=cwd).stdout
     bench = tmp_path / "bench"
-    _run([hamta, "bench", "--quick", "--methods", "sift", "--jobs", "1", "--no-reproductions", "--out", bench,
-          "--data", shared / "data", "--quiet"], cwd=cwd)
+    _run([hamta, "bench", "--quick", "--families", "rotation", "--methods", "sift", "--jobs", "1", "--no-reproductions",
+          "--out", bench, "--data", shared / "data", "--quiet"], cwd=cwd)
     summary = json.loads((bench / "bench.json").read_text())["summary"]
     assert summary["rotation"]["sift"]["success_rate"] == 1.0
