@@ -185,6 +185,7 @@ def test_batch_resume_runs_a_pair_again_when_the_request_changed(tmp_path, demo_
     assert finished_record(job, first) is None  # the set is no longer whole
 
 
+@pytest.mark.processes
 @pytest.mark.parametrize("redirect,code", [(">&-", 0), (">/dev/full", 0), ("2>&-", 0), ("| head -c 10", 3)])
 def test_exit_codes_do_not_depend_on_the_standard_streams(tmp_path, demo_pair, redirect, code):
     tolerance = "0.001" if code == 3 else "3"

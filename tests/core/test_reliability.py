@@ -248,6 +248,7 @@ def test_broken_pipe_exits_quietly():
     assert proc.wait(timeout=120) == 0 and proc.stderr.read() == b""
 
 
+@pytest.mark.processes
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_interrupt_exits_130_and_leaves_no_staging(sig, tmp_path, pair):
     out = tmp_path / "out"
@@ -283,6 +284,7 @@ def test_leftovers_of_a_killed_run_are_removed_by_the_next(tmp_path, pair):
     _assert_one_set(out)
 
 
+@pytest.mark.processes
 def test_concurrent_runs_into_one_folder_never_mix(tmp_path, pair):
     out = tmp_path / "out"
     procs = [subprocess.Popen([sys.executable, "-m", "hamta.cli.main", *_register(pair, out, "--method", "sift",
