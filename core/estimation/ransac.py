@@ -77,14 +77,32 @@ def minimal_fits(kind: str, src: np.ndarray, dst: np.ndarray):
 
 
 def _squared_errors(m: np.ndarray, src: np.ndarray, dst: np.ndarray) -> np.ndarray:
-    """(K, N) squared transfer errors of K hypotheses on N points."""
-    w = np.einsum("kj,nj->kn", m[:, 2, :2], src) + m[:, 2, 2][:, None]
-    with np.errstate(divide="ignore", invalid="ignore"):  # points on a hypothesis' horizon: inf, below
-        px = (np.einsum("kj,nj->kn", m[:, 0, :2], src) + m[:, 0, 2][:, None]) / w
-        py = (np.einsum("kj,nj->kn", m[:, 1, :2], src) + m[:, 1, 2][:, None]) / w
-        e = (px - dst[:, 0]) ** 2 + (py - dst[:, 1]) ** 2
-    e[~np.isfinite(e) | (w <= 0)] = np.inf
-    return e
+    """(K, N) squared transfer errors of K hypotheses on N points, one ufunc at a time in place (a third of
+    the time of ``einsum`` over a two-long axis, the same values); affine hypotheses skip the division."""
+    x, y = src[:, 0], src[:, 1]
+
+    def row(i: int) -> np.ndarray:
+        out = m[:, i, 0, None] * x
+        out += m[:, i, 1, None] * y
+        out += m[:, i, 2, None]
+        return out
+
+    px, py = row(0), row(1)
+    projective = bool(np.any(m[:, 2, :2]) or np.any(m[:, 2, 2] != 1.0))
+    if projective:
+        w = row(2)
+        with np.errstate(divide="ignore", invalid="ignore"):  # points on a hypothesis' horizon: inf, below
+            px /= w
+            py /= w
+    px -= dst[:, 0]
+    py -= dst[:, 1]
+    with np.errstate(over="ignore", invalid="ignore"):
+        px *= px
+        py *= py
+        px += py
+    if projective:
+        px[~np.isfinite(px) | (w <= 0)] = np.inf
+    return px
 
 
 def ransac(src, dst, kind: str, *, threshold_px: float, max_trials: int = 5000,

@@ -2,7 +2,8 @@ import numpy as np
 import pytest
 
 from hamta.core.coords import apply_matrix
-from hamta.core.estimation.ransac import ransac
+from hamta.core.estimation.models import MIN_POINTS
+from hamta.core.estimation.ransac import _squared_errors, minimal_fits, ransac
 
 TRUE = {
     "similarity": np.array([[0.9, -0.3, 40.0], [0.3, 0.9, -25.0], [0, 0, 1.0]]),
@@ -98,3 +99,28 @@ def test_the_gcps_hold_no_place_twice():
     gcps = make_gcps(fit, lambda xy: xy)
     assert len({g.target_px for g in gcps}) == len({g.reference_px for g in gcps}) == len(gcps)
     assert sum(not g.enabled for g in gcps) == 2
+
+
+def _squared_errors_by_matrix(m, src, dst):
+    """Each hypothesis applied as a 3 x 3 matrix product: transfer errors, inf behind its horizon."""
+    h = np.einsum("kij,nj->kni", m, np.column_stack([src, np.ones(len(src))]))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        e = ((h[..., :2] / h[..., 2:] - dst) ** 2).sum(axis=2)
+    e[~np.isfinite(e) | (h[..., 2] <= 0)] = np.inf
+    return e
+
+
+@pytest.mark.parametrize("kind", list(TRUE))
+def test_hypotheses_are_scored_by_their_transfer_errors(kind):
+    rng = np.random.default_rng(3)
+    src, dst = rng.random((200, 2)) * 4 - 2, rng.random((200, 2)) * 4 - 2
+    hypotheses, ok = minimal_fits(kind, *(p[rng.integers(0, 200, (64, MIN_POINTS[kind]))] for p in (src, dst)))
+    hypotheses = hypotheses[ok]
+    expected = _squared_errors_by_matrix(hypotheses, src, dst)
+    got = _squared_errors(hypotheses, src, dst)
+    assert np.array_equal(np.isinf(got), np.isinf(expected))
+    if kind == "projective":
+        assert np.isinf(got).any()  # some points lie behind some hypotheses' horizons
+    w = np.einsum("kj,nj->kn", hypotheses[:, 2, :2], src) + hypotheses[:, 2, 2:]
+    finite = np.isfinite(expected) & (np.abs(w) > 1e-6)  # at the horizon itself, rounding decides
+    assert np.allclose(got[finite], expected[finite], rtol=1e-9, atol=1e-12)

@@ -9,6 +9,7 @@ from hamta.bench.multimodal_set import build
 from hamta.core import RegisterOptions, register
 from hamta.core.descriptors import rift
 from hamta.core.detectors.phase_congruency import log_gabor_maps
+from hamta.core.methods.xmodal import nearest
 
 
 def _scene(size=256, seed=4):
@@ -74,3 +75,12 @@ def test_rift_baseline_matches_a_pair_without_scale_change(shared):
     result = register(case.target, case.reference, "rift", options=RegisterOptions(tolerance_px=15, pixel_mode=True))
     assert math.sqrt(np.mean(case.errors(result.model) ** 2)) < 10.0
     assert result.stats.n_inliers >= 20
+
+
+@pytest.mark.parametrize("rows", [7, 512])
+def test_nearest_descriptors_by_blocks_of_rows(rows):
+    rng = np.random.default_rng(5)
+    a, b = rng.random((50, 216)), rng.random((80, 216))
+    brute = ((a[:, None, :] - b[None, :, :]) ** 2).sum(axis=2).argmin(axis=1)
+    assert np.array_equal(nearest(a, b, rows=rows), brute)
+    assert np.array_equal(nearest(a.astype(np.float32), b.astype(np.float32), rows=rows), brute)
