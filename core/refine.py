@@ -164,13 +164,16 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
     # On one thread: a window's work is many short calls that hold the GIL between them, so threads only
     # wait for each other (two were 25 % slower on the local correction's 2,000 windows, no faster on 300).
     with WindowReader(target, target_bands) as targets, WindowReader(reference, reference_bands) as references:
-        for i, p in enumerate(pts):
-            if i % POINTS_PER_REPORT == 0:
-                monitor.report(i / len(pts), "refining")
-            f = _refine_one(p, inverse, targets, references, params.template_px, params.search_px,
-                            params.min_ncc, params.similarity)
-            if f is not None:
-                found.append(f)
+        if params.similarity == "cfog":
+            found = _refine_structural(pts, inverse, targets, references, params, monitor)
+        else:
+            for i, p in enumerate(pts):
+                if i % POINTS_PER_REPORT == 0:
+                    monitor.report(i / len(pts), "refining")
+                f = _refine_one(p, inverse, targets, references, params.template_px, params.search_px,
+                                params.min_ncc)
+                if f is not None:
+                    found.append(f)
     monitor.report(1.0, "refining")
     if not found:
         return Correspondences.unfitted(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros(0))
@@ -178,8 +181,9 @@ def refine_points(model: LinearModel, reference_xy: np.ndarray, target: RasterIn
                                     np.array([f[2] for f in found]))
 
 
-def _refine_one(p, inverse, targets: WindowReader, references: WindowReader, t, s, min_ncc, similarity):
-    """One refined (target px, reference px, ncc), or None when the point cannot be refined."""
+def _refine_one(p, inverse, targets: WindowReader, references: WindowReader, t, s, min_ncc):
+    """One refined (target px, reference px, ncc) by NCC of intensities, or None when the point cannot be
+    refined."""
     target, reference = targets.info, references.info
     x0, y0 = int(np.floor(p[0])) - t // 2, int(np.floor(p[1])) - t // 2
     if x0 < 0 or y0 < 0 or x0 + t > reference.width or y0 + t > reference.height:
@@ -203,15 +207,103 @@ def _refine_one(p, inverse, targets: WindowReader, references: WindowReader, t, 
     mx = (src[:, 0] - c0 - 0.5).reshape(size, size).astype(np.float32)
     my = (src[:, 1] - r0 - 0.5).reshape(size, size).astype(np.float32)
     warped = cv2.remap(patch, mx, my, cv2.INTER_CUBIC, borderMode=cv2.BORDER_REPLICATE)
-    if similarity == "cfog":
-        surface = ncc_surface(cfog(warped), cfog(tmpl))
-    else:
-        surface = cv2.matchTemplate(warped.astype(np.float32), tmpl.astype(np.float32), cv2.TM_CCOEFF_NORMED)
+    surface = cv2.matchTemplate(warped.astype(np.float32), tmpl.astype(np.float32), cv2.TM_CCOEFF_NORMED)
+    return _found(surface, s, min_ncc, inverse, x0, y0, t)
+
+
+def _found(surface, s: int, min_ncc: float, inverse, x0: int, y0: int, t: int):
+    """(target px, reference px, peak) of the template at reference px (x0, y0) from its correlation
+    ``surface``, or None where the peak is on the border or weaker than ``min_ncc``."""
     offset, peak = peak_offset(surface, s)
     if offset is None or peak < min_ncc:
         return None
     ref_pt = np.array([x0 + t / 2.0, y0 + t / 2.0])
     return inverse.apply(ref_pt + offset)[0], ref_pt, peak
+
+
+TILE_PX = 512  # reference px: the windows of one tile share their CFOG descriptors
+CFOG_MARGIN_PX = 8  # beyond a window, wider than CFOG's support (gradient and smoothing): its values are the image's
+
+
+def _refine_structural(pts, inverse, targets: WindowReader, references: WindowReader, params: RefineParams,
+                       monitor: Monitor) -> list:
+    """Refined (target px, reference px, ncc) of the points (reference px, in order) by NCC of CFOG
+    descriptors, computed once for each tile of windows (the reference read, the target warped onto the
+    reference grid through ``inverse``) instead of once per window: the same descriptors the whole images
+    give, without a window's own padded border, in a third of the time."""
+    t = params.template_px
+    corners = np.floor(pts).astype(int) - t // 2  # the templates' top-left reference px
+    tiles = {}
+    for i, key in enumerate(map(tuple, corners // TILE_PX)):
+        tiles.setdefault(key, []).append(i)
+    found, done = {}, 0
+    for members in tiles.values():
+        report = lambda k, done=done: monitor.report((done + k) / len(pts), "refining")  # noqa: E731
+        found.update(_refine_tile(corners[members], members, inverse, targets, references, params, report))
+        done += len(members)
+    return [found[i] for i in range(len(pts)) if i in found]
+
+
+def _refine_tile(corners, members, inverse, targets: WindowReader, references: WindowReader, params: RefineParams,
+                 report):
+    """{point index: (target px, reference px, ncc)} of the windows whose templates start at ``corners``;
+    ``report(k)`` after every ``POINTS_PER_REPORT`` windows."""
+    t, s, m = params.template_px, params.search_px, CFOG_MARGIN_PX
+    target, reference = targets.info, references.info
+    inside = ((corners >= 0) & (corners + t <= [reference.width, reference.height])).all(axis=1)
+    corners, members = corners[inside], [i for i, ok in zip(members, inside) if ok]
+    if not members:
+        return {}
+    # The reference around the templates, and the target warped onto the reference grid around the search areas.
+    (rx0, ry0), (rx1, ry1) = np.maximum(corners.min(axis=0) - m, 0), np.minimum(
+        corners.max(axis=0) + t + m, [reference.width, reference.height])
+    ref, ref_ok = references.read(Window(int(rx0), int(ry0), int(rx1 - rx0), int(ry1 - ry0)))
+    (wx0, wy0), (wx1, wy1) = corners.min(axis=0) - s - m, corners.max(axis=0) + t + s + m
+    gx, gy = np.meshgrid(np.arange(wx0, wx1) + 0.5, np.arange(wy0, wy1) + 0.5)
+    src = inverse.apply(np.column_stack([gx.ravel(), gy.ravel()]))
+    spans = _target_spans(corners, inverse, t, s)  # each window's target patch: c0, r0, c1, r1
+    usable = (spans[:, :2] >= 0).all(axis=1) & (spans[:, 2] <= target.width) & (spans[:, 3] <= target.height)
+    if not usable.any():
+        return {}
+    pc0, pr0 = spans[usable, :2].min(axis=0)
+    pc1, pr1 = spans[usable, 2:].max(axis=0)
+    lo, hi = xy_bounds(src)
+    c0, r0 = np.maximum(np.minimum(np.floor(lo).astype(int) - 2, [pc0, pr0]), 0)
+    c1, r1 = np.minimum(np.maximum(np.ceil(hi).astype(int) + 2, [pc1, pr1]), [target.width, target.height])
+    patch, patch_ok = targets.read(Window(int(c0), int(r0), int(c1 - c0), int(r1 - r0)))
+    shape = (int(wy1 - wy0), int(wx1 - wx0))
+    mx = (src[:, 0] - c0 - 0.5).reshape(shape).astype(np.float32)
+    my = (src[:, 1] - r0 - 0.5).reshape(shape).astype(np.float32)
+    warped = cv2.remap(_mean_filled(patch, patch_ok), mx, my, cv2.INTER_CUBIC, borderMode=cv2.BORDER_REPLICATE)
+    ref = _mean_filled(ref, ref_ok)
+    dr, dt = cfog(ref), cfog(warped)
+    out = {}
+    for k, (i, (x0, y0), span, ok) in enumerate(zip(members, corners, spans, usable)):
+        if k % POINTS_PER_REPORT == 0:
+            report(k)
+        tx, ty = x0 - rx0, y0 - ry0
+        if not ok or ref_ok[ty:ty + t, tx:tx + t].mean() < 0.9 or ref[ty:ty + t, tx:tx + t].std() < 1e-6:
+            continue
+        if patch_ok[span[1] - r0:span[3] - r0, span[0] - c0:span[2] - c0].mean() < 0.9:
+            continue
+        ax, ay = x0 - s - wx0, y0 - s - wy0
+        surface = ncc_surface(dt[:, ay:ay + t + 2 * s, ax:ax + t + 2 * s], dr[:, ty:ty + t, tx:tx + t])
+        f = _found(surface, s, params.min_ncc, inverse, x0, y0, t)
+        if f is not None:
+            out[i] = f
+    return out
+
+
+def _target_spans(corners, inverse, t: int, s: int) -> np.ndarray:
+    """(K, 4) target px (c0, r0, c1, r1) each window's search area needs from the target, two px of
+    interpolation support around it (the bounds of its corners' pixel centres: the model is linear)."""
+    lo_x, lo_y = corners[:, 0] - s + 0.5, corners[:, 1] - s + 0.5
+    hi_x, hi_y = lo_x + t + 2 * s - 1, lo_y + t + 2 * s - 1
+    quad = inverse.apply(np.stack([np.column_stack(c) for c in ((lo_x, lo_y), (hi_x, lo_y), (hi_x, hi_y),
+                                                                 (lo_x, hi_y))], axis=1).reshape(-1, 2))
+    quad = quad.reshape(len(corners), 4, 2)
+    lo, hi = np.floor(quad.min(axis=1)).astype(int) - 2, np.ceil(quad.max(axis=1)).astype(int) + 2
+    return np.column_stack([lo, hi])
 
 
 def _filled(image: np.ndarray, valid: np.ndarray, min_valid: float = 0.9):
@@ -221,3 +313,11 @@ def _filled(image: np.ndarray, valid: np.ndarray, min_valid: float = 0.9):
     if not valid.all():
         image = np.where(valid, image, image[valid].mean()).astype(np.float32)
     return image
+
+
+def _mean_filled(image: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """``image`` (float32) with invalid pixels set to the valid mean (0 without any)."""
+    image = image.astype(np.float32, copy=False)
+    if valid.all():
+        return image
+    return np.where(valid, image, image[valid].mean() if valid.any() else 0.0).astype(np.float32)
