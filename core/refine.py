@@ -5,7 +5,9 @@ well-spread inliers it reads a small reference template and the matching target 
 full resolution, resamples the target onto the reference pixel grid with the current (linear)
 model, and measures the remaining offset by normalised cross-correlation with a sub-pixel peak.
 This is the area-based refinement AROSICS performs with phase correlation (Scheffler et al. 2017,
-Remote Sensing 9(7):676, :DOI:`10.3390/rs9070676`), applied at feature locations.
+Remote Sensing 9(7):676, :DOI:`10.3390/rs9070676`), applied at feature locations. Across modalities
+it correlates CFOG descriptors (Ye et al. 2019), computed once for each tile of windows on the
+reference read and the target warped onto the reference grid, as the whole images give them.
 """
 from __future__ import annotations
 
