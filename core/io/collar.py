@@ -111,9 +111,11 @@ def _footprint(collar: np.ndarray) -> bool:
     largest = 1 + int(np.argmax(sizes[1:, cv2.CC_STAT_AREA]))
     if sizes[largest, cv2.CC_STAT_AREA] < 0.95 * opened.sum():  # the fill cuts the image: not a footprint
         return False
-    region = labels == largest
-    hull = cv2.convexHull(cv2.findNonZero(region.astype(np.uint8)))
-    solidity = float(region.sum()) / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True), 1.0)
+    # The hull of the region's outline is the region's: a tenth of the time of hulling every pixel.
+    outline, _ = cv2.findContours((labels == largest).astype(np.uint8), cv2.RETR_EXTERNAL, cv2.CHAIN_APPROX_SIMPLE)
+    hull = cv2.convexHull(np.concatenate(outline))
+    area = float(sizes[largest, cv2.CC_STAT_AREA])
+    solidity = area / max(cv2.contourArea(hull) + 0.5 * cv2.arcLength(hull, True), 1.0)
     inside = np.zeros(collar.shape, np.uint8)
     cv2.fillConvexPoly(inside, hull, 1)
     inside = cv2.erode(inside, np.ones((2 * HULL_MARGIN_PX + 1,) * 2, np.uint8))
