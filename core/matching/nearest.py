@@ -7,6 +7,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
+from ..blas import reference_blas
 from ..types import Features
 
 CROSS_CHECKS = ("none", "mutual", "dual-ratio")
@@ -64,7 +65,10 @@ def _knn(query: np.ndarray, train: np.ndarray, metric: str):
     """(distances, indexes) of the two nearest train rows of every query row, nearest first."""
     if metric == "hamming":
         return cv2.batchDistance(query, train, cv2.CV_32S, normType=cv2.NORM_HAMMING, K=2)
-    return _two_nearest_l2(query.astype(np.float32, copy=False), train.astype(np.float32, copy=False))
+    q, t = query.astype(np.float32, copy=False), train.astype(np.float32, copy=False)
+    if reference_blas():
+        return cv2.batchDistance(q, t, cv2.CV_32F, normType=cv2.NORM_L2, K=2)
+    return _two_nearest_l2(q, t)
 
 
 def _two_nearest_l2(query: np.ndarray, train: np.ndarray, block_values: int = 1 << 22):

@@ -33,8 +33,10 @@ import time
 from dataclasses import dataclass
 from typing import List
 
+import cv2
 import numpy as np
 
+from ..blas import reference_blas
 from ..descriptors import rift
 from ..estimation.affine2d import angle_scale, apply, compose, invert, resize, scaling, similarity, warp
 from ..estimation.ransac import ransac_or_none
@@ -95,6 +97,8 @@ def nearest(a: np.ndarray, b: np.ndarray, rows: int = 512) -> np.ndarray:
     """For each row of ``a``, the index of its nearest row of ``b`` (Euclidean): the largest
     ``a.b - |b|^2 / 2`` (``|a|^2`` is the same along a row), a block of ``rows`` rows at a time, so that
     the distances stay in cache instead of filling hundreds of MB (the same indexes, in half the time)."""
+    if reference_blas():
+        return _brute_force(a, b, 1)[1][:, 0].astype(np.intp)
     half = (b * b).sum(1) * -0.5  # exact: a power of two
     out = np.empty(len(a), np.intp)
     for i in range(0, len(a), rows):
@@ -111,6 +115,12 @@ def squared_distances(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     d += (a * a).sum(1)[:, None]
     d += (b * b).sum(1)[None]
     return d
+
+
+def _brute_force(a: np.ndarray, b: np.ndarray, k: int):
+    """OpenCV's brute force: the squared distances and indexes of the ``k`` nearest rows of ``b``, for
+    processes where numpy's matrix products run on a reference BLAS (:mod:`hamta.core.blas`)."""
+    return cv2.batchDistance(a.astype(np.float32), b.astype(np.float32), cv2.CV_32F, normType=cv2.NORM_L2SQR, K=k)
 
 
 def _far(p: np.ndarray, q: np.ndarray, radius: float) -> np.ndarray:
