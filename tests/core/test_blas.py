@@ -34,9 +34,10 @@ def test_gsl_loaded_first_is_seen_where_numpy_binds_to_it():
 def test_the_brute_force_route_finds_the_same_neighbours(monkeypatch):
     rng = np.random.default_rng(9)
     a, b = rng.random((120, 216)).astype(np.float32), rng.random((150, 216)).astype(np.float32)
-    fast = xmodal.nearest(a, b), nearest_module._knn(a[:, :128], b[:, :128], "l2")
+    fast = xmodal.nearest(a, b), nearest_module._knn(a[:, :128], b[:, :128], "l2"), xmodal.squared_distances(a, b)
     monkeypatch.setattr(xmodal, "reference_blas", lambda: True)
     monkeypatch.setattr(nearest_module, "reference_blas", lambda: True)
-    slow = xmodal.nearest(a, b), nearest_module._knn(a[:, :128], b[:, :128], "l2")
+    slow = xmodal.nearest(a, b), nearest_module._knn(a[:, :128], b[:, :128], "l2"), xmodal.squared_distances(a, b)
     assert np.array_equal(fast[0], slow[0])
+    assert slow[2].dtype == np.float32 and np.allclose(fast[2], slow[2], atol=1e-4)
     assert np.array_equal(fast[1][1], slow[1][1]) and np.allclose(fast[1][0], slow[1][0], rtol=1e-5)
