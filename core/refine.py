@@ -267,11 +267,9 @@ def _refine_tile(corners, members, inverse, targets: WindowReader, references: W
     usable = (spans[:, :2] >= 0).all(axis=1) & (spans[:, 2] <= target.width) & (spans[:, 3] <= target.height)
     if not usable.any():
         return {}
-    pc0, pr0 = spans[usable, :2].min(axis=0)
-    pc1, pr1 = spans[usable, 2:].max(axis=0)
-    lo, hi = xy_bounds(src)
-    c0, r0 = np.maximum(np.minimum(np.floor(lo).astype(int) - 2, [pc0, pr0]), 0)
-    c1, r1 = np.minimum(np.maximum(np.ceil(hi).astype(int) + 2, [pc1, pr1]), [target.width, target.height])
+    lo, hi = xy_bounds(src)  # the region's target patch holds every window's
+    c0, r0 = np.maximum(np.floor(lo).astype(int) - 2, 0)
+    c1, r1 = np.minimum(np.ceil(hi).astype(int) + 2, [target.width, target.height])
     patch, patch_ok = targets.read(Window(int(c0), int(r0), int(c1 - c0), int(r1 - r0)))
     shape = (int(wy1 - wy0), int(wx1 - wx0))
     mx = (src[:, 0] - c0 - 0.5).reshape(shape).astype(np.float32)
@@ -310,11 +308,7 @@ def _target_spans(corners, inverse, t: int, s: int) -> np.ndarray:
 
 def _filled(image: np.ndarray, valid: np.ndarray, min_valid: float = 0.9):
     """``image`` with invalid pixels set to the valid mean, or None when too few are valid."""
-    if valid.mean() < min_valid:
-        return None
-    if not valid.all():
-        image = np.where(valid, image, image[valid].mean()).astype(np.float32)
-    return image
+    return None if valid.mean() < min_valid else _mean_filled(image, valid)
 
 
 def _mean_filled(image: np.ndarray, valid: np.ndarray) -> np.ndarray:
