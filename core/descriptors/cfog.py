@@ -11,6 +11,7 @@ Matching compares descriptor windows by normalised cross-correlation over all ch
 """
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Optional, Tuple
 
 import cv2
@@ -39,11 +40,7 @@ def cfog(image: np.ndarray, bins: int = 9, sigma: float = 0.8, presmooth: float 
         a = k * np.pi / bins
         raw[k] = blur(np.abs(img.dtype.type(np.cos(a)) * gx + img.dtype.type(np.sin(a)) * gy), sigma)
     del gx, gy
-    ch = 0.5 * raw
-    ch[1:] += 0.25 * raw[:-1]
-    ch[0] += 0.25 * raw[-1]
-    ch[:-1] += 0.25 * raw[1:]
-    ch[-1] += 0.25 * raw[0]
+    ch = _across_orientations(raw)
     del raw
     norm = np.sqrt(np.einsum("kij,kij->ij", ch, ch))
     norm += img.dtype.type(1e-6 + 1e-3 * float(ch.mean()))
@@ -51,19 +48,37 @@ def cfog(image: np.ndarray, bins: int = 9, sigma: float = 0.8, presmooth: float 
     if valid is not None:  # the edge between valid and filled pixels is not image structure
         r = 2 * int(np.ceil(2 * sigma + presmooth)) + 3
         ch *= cv2.erode(valid.astype(np.uint8), np.ones((r, r), np.uint8), borderType=cv2.BORDER_REPLICATE)[None]
-    return ch.astype(np.float32)
+    return ch.astype(np.float32, copy=False)
+
+
+def _across_orientations(raw: np.ndarray) -> np.ndarray:
+    """``raw`` (bins, H, W) smoothed by [1, 2, 1] / 4 across its circular orientation axis, a channel at a
+    time: temporaries the size of the stack cost more than the arithmetic (fresh pages)."""
+    bins = len(raw)
+    out = np.empty_like(raw)
+    quarter = np.empty_like(raw[0])
+    for k in range(bins):
+        np.multiply(raw[k], 0.5, out=out[k])
+        out[k] += np.multiply(raw[k - 1], 0.25, out=quarter)
+    for k in range(bins):
+        out[k] += np.multiply(raw[(k + 1) % bins], 0.25, out=quarter)
+    return out
 
 
 def _blur_opencv(img: np.ndarray, sigma: float) -> np.ndarray:
     return cv2.GaussianBlur(img, (0, 0), sigma)
 
 
+@lru_cache(maxsize=None)
 def gaussian_kernel(sigma: float) -> np.ndarray:
-    """OpenCV's Gaussian kernel for floating-point images: ``2 round(4 sigma) + 1`` taps, normalised."""
+    """OpenCV's Gaussian kernel for floating-point images: ``2 round(4 sigma) + 1`` taps, normalised (read
+    only, shared)."""
     half = int(round(sigma * 8 + 1)) // 2
     x = np.arange(-half, half + 1, dtype=np.float64)
     k = np.exp(-x * x / (2.0 * sigma * sigma))
-    return k / k.sum()
+    k /= k.sum()
+    k.setflags(write=False)
+    return k
 
 
 def gaussian_blur(img: np.ndarray, sigma: float) -> np.ndarray:
@@ -75,15 +90,32 @@ def gaussian_blur(img: np.ndarray, sigma: float) -> np.ndarray:
 
 
 def _correlate(img: np.ndarray, k: np.ndarray, axis: int) -> np.ndarray:
+    """``img`` correlated with the symmetric kernel ``k`` along ``axis``, borders mirrored."""
     half = len(k) // 2
-    pad = [(0, 0)] * img.ndim
-    pad[axis] = (half, half)
-    padded = np.moveaxis(np.pad(img, pad, mode="reflect"), axis, 0)
     n = img.shape[axis]
-    out = k[half] * padded[half:half + n]
-    for j in range(half):  # a symmetric kernel: both taps at distance half - j at once
-        out += k[j] * (padded[j:j + n] + padded[len(k) - 1 - j:len(k) - 1 - j + n])
-    return np.moveaxis(out, 0, axis)
+    lead = (slice(None),) * (axis % img.ndim)
+    padded = _mirrored(img, half, axis)
+
+    def at(j: int) -> np.ndarray:
+        return padded[lead + (slice(j, j + n),)]
+
+    out = k[half] * at(half)
+    for j in range(half):  # both taps at distance half - j at once
+        out += k[j] * (at(j) + at(len(k) - 1 - j))
+    return out
+
+
+def _mirrored(img: np.ndarray, half: int, axis: int) -> np.ndarray:
+    """``img`` padded by ``half`` along ``axis``, mirrored without repeating the edge (``np.pad``'s 'reflect',
+    built directly: its general code costs more than the smoothing of a small window)."""
+    n = img.shape[axis]
+    if n <= half + 1:
+        pad = [(0, 0)] * img.ndim
+        pad[axis] = (half, half)
+        return np.pad(img, pad, mode="reflect")
+    lead = (slice(None),) * (axis % img.ndim)
+    return np.concatenate([img[lead + (slice(half, 0, -1),)], img,
+                           img[lead + (slice(n - 2, n - 2 - half, -1),)]], axis=axis)
 
 
 def central_differences(img: np.ndarray):

@@ -29,7 +29,8 @@ class TemplateSpectrum:
     def __init__(self, template: np.ndarray, shape):
         t = template - template.mean()
         self.norm = float(np.sqrt((t ** 2).sum()))
-        self.spectrum = np.conj(np.fft.rfft2(t, shape, axes=(1, 2)))
+        spectrum = np.fft.rfft2(t, shape, axes=(1, 2))
+        self.spectrum = np.conj(spectrum, out=spectrum)
         self.size, self.side = template.size, template.shape[-1]
 
     def turned(self) -> tuple:
@@ -38,9 +39,12 @@ class TemplateSpectrum:
         c, n, half = self.spectrum.shape
         both, x, y = _ramps(n, half, self.side)
         reverse = np.r_[0, np.arange(c - 1, 0, -1)]
-        flipped_y = np.conj(self.spectrum[reverse][:, (-np.arange(n)) % n])
-        spectra = (both * self.spectrum, x * np.conj(flipped_y), y * flipped_y)
-        return tuple(self._with(np.conj(g)) for g in spectra)
+        flipped_y = self.spectrum[np.ix_(reverse, (-np.arange(n)) % n)]
+        np.conj(flipped_y, out=flipped_y)
+        mirrored_x = np.conj(flipped_y)
+        spectra = (np.multiply(both, self.spectrum), np.multiply(x, mirrored_x, out=mirrored_x),
+                   np.multiply(y, flipped_y, out=flipped_y))
+        return tuple(self._with(np.conj(g, out=g)) for g in spectra)
 
     def _with(self, spectrum: np.ndarray) -> "TemplateSpectrum":
         other = copy.copy(self)
@@ -56,11 +60,15 @@ class SearchSpectrum:
         self.shape = tuple(shape or search.shape[1:])
         self.spectrum = np.fft.rfft2(search, self.shape, axes=(1, 2))
         self.s1 = window_sums(search.sum(axis=0, dtype=np.float64), side)
-        self.s2 = window_sums((search.astype(np.float64) ** 2).sum(axis=0), side)
+        squares = search.astype(np.float64)
+        self.s2 = window_sums(np.square(squares, out=squares).sum(axis=0), side)
 
     def ncc(self, template: "TemplateSpectrum", s: int) -> np.ndarray:
-        """(2s + 1, 2s + 1) normalised cross-correlation surface (as :func:`ncc_surface`)."""
-        num = np.fft.irfft2((self.spectrum * template.spectrum).sum(axis=0), self.shape)[:2 * s + 1, :2 * s + 1]
+        """(2s + 1, 2s + 1) normalised cross-correlation surface (as :func:`ncc_surface`), ``s`` at most the
+        search area's margin around the template."""
+        # irfft2, as numpy computes it (columns, then rows), with the rows no surface needs left out
+        columns = np.fft.ifft((self.spectrum * template.spectrum).sum(axis=0), self.shape[0], axis=0)
+        num = np.fft.irfft(columns[:2 * s + 1], self.shape[1], axis=1)[:, :2 * s + 1]
         s1, s2 = self.s1[:2 * s + 1, :2 * s + 1], self.s2[:2 * s + 1, :2 * s + 1]
         var = np.maximum(s2 - s1 ** 2 / template.size, 0.0)
         return num / np.maximum(np.sqrt(var) * template.norm, 1e-9)
@@ -81,15 +89,11 @@ def fast_length(n: int) -> int:
 
 
 def window_sums(a: np.ndarray, side: int) -> np.ndarray:
-    """Sums of ``a`` over every ``side`` x ``side`` window, indexed by the window's top-left corner (zero
-    beyond the array), from cumulative sums in double precision."""
+    """Sums of ``a`` over every ``side`` x ``side`` window inside it, indexed by the window's top-left corner,
+    from cumulative sums in double precision."""
     c = np.zeros((a.shape[0] + 1, a.shape[1] + 1))
     c[1:, 1:] = np.cumsum(np.cumsum(a, axis=0), axis=1)
-    rows, cols = a.shape
-    r1 = np.minimum(np.arange(rows) + side, rows)
-    c1 = np.minimum(np.arange(cols) + side, cols)
-    r0, c0 = np.arange(rows), np.arange(cols)
-    return c[np.ix_(r1, c1)] - c[np.ix_(r0, c1)] - c[np.ix_(r1, c0)] + c[np.ix_(r0, c0)]
+    return c[side:, side:] - c[:-side, side:] - c[side:, :-side] + c[:-side, :-side]
 
 
 def margin(surface: np.ndarray, s: int, radius: float) -> float:

@@ -106,6 +106,60 @@ def test_the_checks_numpy_smoothing_and_sampling_equal_scipys():
         assert np.array_equal(nearest_valid(valid, rc), want)
 
 
+def _cfog_over_the_stack(image, valid, portable, bins=9, sigma=0.8):
+    """CFOG as first written: the orientation smoothing and normalisation over the whole stack at once."""
+    from hamta.core.descriptors.cfog import central_differences, gaussian_blur
+
+    img = image.astype(np.float64 if portable else np.float32)
+    img = np.where(valid, img, img.dtype.type(img[valid].mean()))
+    blur = gaussian_blur if portable else (lambda a, s: cv2.GaussianBlur(a, (0, 0), s))
+    gx, gy = central_differences(img) if portable else (cv2.Sobel(img, cv2.CV_32F, 1, 0, ksize=1),
+                                                        cv2.Sobel(img, cv2.CV_32F, 0, 1, ksize=1))
+    raw = np.stack([blur(np.abs(img.dtype.type(np.cos(k * np.pi / bins)) * gx
+                                + img.dtype.type(np.sin(k * np.pi / bins)) * gy), sigma) for k in range(bins)])
+    ch = 0.5 * raw
+    ch[1:] += 0.25 * raw[:-1]
+    ch[0] += 0.25 * raw[-1]
+    ch[:-1] += 0.25 * raw[1:]
+    ch[-1] += 0.25 * raw[0]
+    norm = np.sqrt(np.einsum("kij,kij->ij", ch, ch))
+    norm += img.dtype.type(1e-6 + 1e-3 * float(ch.mean()))
+    ch /= norm[None]
+    ch *= cv2.erode(valid.astype(np.uint8), np.ones((7, 7), np.uint8), borderType=cv2.BORDER_REPLICATE)[None]
+    return ch.astype(np.float32)
+
+
+@pytest.mark.parametrize("portable", [True, False])
+def test_cfog_channel_by_channel_gives_the_numbers_of_the_whole_stack(portable):
+    """The check's numbers (and the evidence its thresholds were fitted on) do not move with how CFOG is
+    computed: the same operations in the same order give the same bits."""
+    rng = np.random.default_rng(3)
+    image = _landscape()[:116, :130] + rng.normal(0, 2, (116, 130))
+    valid = np.ones(image.shape, bool)
+    valid[:9, :20] = False
+    assert np.array_equal(cfog(image, valid=valid, portable=portable), _cfog_over_the_stack(image, valid, portable))
+
+
+def test_the_checks_pruned_fft_surface_is_the_direct_ncc():
+    """Only the rows of the inverse transform that the surface needs are computed; the surface (and its
+    window sums) are the direct normalised cross-correlation's."""
+    from hamta.core.verify.correlation import SearchSpectrum, TemplateSpectrum, fast_length, window_sums
+
+    rng = np.random.default_rng(8)
+    side, s = 40, 9
+    search = rng.random((9, side + 2 * s, side + 2 * s)).astype(np.float32)
+    noise = rng.normal(0, 0.05, (9, side, side)).astype(np.float32)
+    template = search[:, s + 2:s + 2 + side, s - 3:s - 3 + side] + noise
+    shape = (fast_length(side + 2 * s),) * 2
+    surface = SearchSpectrum(search, side, shape).ncc(TemplateSpectrum(template, shape), s)
+    assert np.allclose(surface, ncc_surface(search, template), rtol=0, atol=1e-5)
+    assert peak_offset(surface, s)[0] == pytest.approx((-3, 2), abs=0.05)
+    a = rng.random((12, 15))
+    sums = window_sums(a, 5)
+    assert sums.shape == (8, 11)
+    assert np.allclose(sums, [[a[r:r + 5, c:c + 5].sum() for c in range(11)] for r in range(8)], rtol=0, atol=1e-12)
+
+
 @pytest.mark.parametrize("tile", [96, 512])
 def test_structural_refinement_finds_a_subpixel_shift_whatever_the_tiles(raster_writer, monkeypatch, tile):
     """CFOG descriptors computed once per tile of windows: across an inversion of contrast, the windows find

@@ -84,3 +84,16 @@ def test_nearest_descriptors_by_blocks_of_rows(rows):
     brute = ((a[:, None, :] - b[None, :, :]) ** 2).sum(axis=2).argmin(axis=1)
     assert np.array_equal(nearest(a, b, rows=rows), brute)
     assert np.array_equal(nearest(a.astype(np.float32), b.astype(np.float32), rows=rows), brute)
+
+
+def test_rotated_descriptors_do_not_depend_on_how_many_keypoints_are_sampled_at_once():
+    img = _scene()
+    valid = np.ones(img.shape, bool)
+    valid[:30, :50] = False
+    m = rift.maps(img, valid)
+    xy, angle = rift.orientations(m["M"], rift.corners(m["M"], valid, 300))
+    assert len(xy) > 100
+    for step in (1, 2):
+        many = rift.describe_rotated(m["mim"], xy, angle, step, chunk=300)
+        for chunk in (1, 7, 64):
+            assert np.array_equal(rift.describe_rotated(m["mim"], xy, angle, step, chunk=chunk), many)
