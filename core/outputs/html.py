@@ -1,7 +1,7 @@
 """``report.html``: a self-contained visual report of one registration, read by looking.
 
 One HTML file with inline CSS, a single line of inline JavaScript (the swipe handle) and every image
-embedded as a base64 PNG, so it can be mailed or archived alone. It shows the verdict of the
+embedded (base64 JPEG pictures, an SVG chart), so it can be mailed or archived alone. It shows the verdict of the
 independent check first, then the two rasters with their GCPs, the residual vectors and their
 histogram, a checkerboard and a swipe view of the reference against the target warped through the
 model, the verification sites, and the numbers (model, statistics, timings, the ``auto`` attempts,

@@ -18,11 +18,11 @@ from .figures import (
     RAMP_RGB,
     REJECTED_BGR,
     _jpeg,
-    _png,
+    _svg,
     arrow_factor,
     checkerboard_figure,
     gcp_figure,
-    histogram_figure,
+    histogram_svg,
     residual_figure,
     sites_figure,
     swipe_top,
@@ -70,10 +70,11 @@ def _residual_section(result, ref: Preview) -> str:
            "a distortion the model does not follow.")
     hist_cap = (f"Residual magnitudes of the {len(mag)} enabled GCPs (reference px); the {len(r_off)} rejected "
                 f"matches are left out. Max {_num(mag.max(), '.2f')} px.")
-    hist = histogram_figure(mag, result.stats.rmse_px)
+    width, height = 640, 280
+    hist = histogram_svg(mag, result.stats.rmse_px, (width, height))
     return ("<h2>2. Residuals</h2><div class=grid>"
             + _figure(_jpeg(arrows), "residual vectors", cap, *ref.shape[::-1])
-            + _figure(_png(hist), "residual histogram", hist_cap, hist.shape[1], hist.shape[0]) + "</div>")
+            + _figure(_svg(hist), "residual histogram", hist_cap, width, height) + "</div>")
 
 
 def _overlay_section(ref: Preview, warped: np.ndarray, valid: np.ndarray) -> str:
@@ -84,8 +85,9 @@ def _overlay_section(ref: Preview, warped: np.ndarray, valid: np.ndarray) -> str
                     cols, rows)
     script = ("this.previousElementSibling.lastElementChild.style.clipPath="
               "'inset(0 '+(100-this.value)+'% 0 0)'")
+    top = _jpeg(swipe_top(ref, warped, valid))
     swipe = (f'<figure><div class=swipebox><div class=swipe><img src="{_jpeg(ref.image)}" alt="reference" '
-             f'width={cols} height={rows}><img class=top src="{_jpeg(swipe_top(warped, valid))}" alt="warped target" '
+             f'width={cols} height={rows}><img class=top src="{top}" alt="warped target" '
              f'width={cols} height={rows}></div><input type=range min=0 max=100 value=50 aria-label="swipe" '
              f'oninput="{script}"></div>'
              "<figcaption>Swipe: the warped target left of the handle, the reference right of it. Drag the slider "

@@ -5,6 +5,7 @@ import dataclasses
 import datetime
 import html
 import re
+from xml.etree import ElementTree
 
 import cv2
 import numpy as np
@@ -58,13 +59,21 @@ def test_report_is_self_contained_and_every_image_is_real(sift_result, tmp_path)
     assert "http://" not in text and "https://" not in text and "@import" not in text
     assert text.count("<script") == 0 and text.count("oninput=") == 1
     images = _images(text)
-    assert text.count("data:image/png;base64,") + text.count("data:image/jpeg;base64,") == len(images) >= 8
+    assert text.count("data:image/png;base64,") + text.count("data:image/jpeg;base64,") == len(images) >= 7
     for alt, img in images.items():
         assert min(img.shape[:2]) >= 100 and max(img.shape[:2]) <= 1000, alt
         assert float(img[..., :3].std()) > 5.0, f"image '{alt}' is (nearly) constant"
-    for alt in ("checkerboard", "residual histogram", "residual vectors", "check sites", "target with GCPs",
-                "reference with GCPs", "warped target"):
+    for alt in ("checkerboard", "residual vectors", "check sites", "target with GCPs", "reference with GCPs",
+                "warped target"):
         assert alt in images
+    # The histogram is a drawing: bars, axes, and the RMSE marked.
+    (svg,) = re.findall(r'<img[^>]*?src="data:image/svg\+xml;base64,([A-Za-z0-9+/=]+)"[^>]*?alt="residual histogram"',
+                        text)
+    chart = ElementTree.fromstring(base64.b64decode(svg))
+    ns = "{http://www.w3.org/2000/svg}"
+    bars = [r for r in chart.iter(ns + "rect") if r.get("fill") != "#fff"]
+    assert len(bars) >= 5 and sum(float(r.get("height")) > 0 for r in bars) >= 2
+    assert f"RMSE {sift_result.stats.rmse_px:.2f}" in [t.text for t in chart.iter(ns + "text")]
     assert max(images["reference with GCPs"].shape[:2]) == 800
     # The checkerboard holds tinted target tiles and grey reference tiles.
     board = images["checkerboard"].astype(int)
@@ -272,3 +281,17 @@ def test_describe_crs_names_code_and_unit():
     scale = report_scale.MapScale("WGS 84 (EPSG:4326)", "degree", 1e-4)
     assert scale.px(0.5) == "0.000050°"
     assert report_scale.MapScale("x", "US survey foot", 2.0).px(1.25) == "2.50 US ft"
+
+
+def test_the_swipes_top_layer_shows_the_reference_where_the_target_does_not_reach():
+    """A JPEG has no transparency: where the warped target is missing, its layer holds the reference itself,
+    not black."""
+    from hamta.core.outputs.figures import swipe_top
+
+    rng = np.random.default_rng(2)
+    ref = Preview(rng.integers(0, 256, (60, 80)).astype(np.uint8), np.ones((60, 80), bool), (1.0, 1.0))
+    warped = rng.integers(0, 256, (60, 80)).astype(np.uint8)
+    valid = np.zeros((60, 80), bool)
+    valid[10:50, 20:70] = True
+    top = swipe_top(ref, warped, valid)
+    assert np.array_equal(top[valid], warped[valid]) and np.array_equal(top[~valid], ref.image[~valid])
