@@ -139,6 +139,26 @@ def _far(p: np.ndarray, q: np.ndarray, radius: float) -> np.ndarray:
     return dx > np.float32(radius * radius)
 
 
+def mutual_nearest_within(d2: np.ndarray, p: np.ndarray, q: np.ndarray, radius: float, rows: int = 128):
+    """For squared descriptor distances ``d2`` (len(p), len(q)) between points ``p`` and ``q``: each row's
+    nearest column among the points within ``radius`` of its own (``j``), and whether that pair is mutual and
+    that near (``ok``). ``d2`` is masked in place, ``rows`` rows at a time (the masks stay in cache); the
+    columns' nearest rows are kept as the blocks go (first of equals, as ``argmin``)."""
+    n, m = d2.shape
+    j = np.empty(n, np.intp)
+    column_min, column_arg = np.full(m, np.inf, d2.dtype), np.zeros(m, np.intp)
+    for i in range(0, n, rows):
+        block = d2[i:i + rows]
+        block[_far(p[i:i + rows], q, radius)] = np.inf
+        j[i:i + rows] = block.argmin(axis=1)
+        low = block.argmin(axis=0)
+        value = block[low, np.arange(m)]
+        better = value < column_min
+        column_min[better], column_arg[better] = value[better], low[better] + i
+    ok = np.isfinite(d2[np.arange(n), j]) & (column_arg[j] == np.arange(n))
+    return j, ok
+
+
 def vote_hypotheses(t_feat, r_feat, n: int, seed: int) -> List[np.ndarray]:
     """Similarity hypotheses (2 x 3) from nearest-neighbour matches voting in a (rotation, log2 scale)
     histogram (``VOTE_ANGLE_DEG`` x half octaves, circularly smoothed over rotation); each of the
@@ -209,10 +229,7 @@ def local_rift(target, t_valid, reference, r_valid, m, params: XmodalParams, rad
     txy, td, rxy, rd = tfeat.keypoints.xy, tfeat.descriptors, rfeat.keypoints.xy, rfeat.descriptors
     if len(txy) < 4 or len(rxy) < 4:
         return none
-    d2 = squared_distances(td, rd)
-    d2[_far(txy, rxy, radius * max(shape))] = np.inf
-    j = d2.argmin(axis=1)
-    ok = np.isfinite(d2[np.arange(len(j)), j]) & (d2.argmin(axis=0)[j] == np.arange(len(j)))
+    j, ok = mutual_nearest_within(squared_distances(td, rd), txy, rxy, radius * max(shape))
     src, dst = txy[ok], rxy[j[ok]]
     if len(src) < 4:
         return none

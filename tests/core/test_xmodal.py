@@ -97,3 +97,21 @@ def test_rotated_descriptors_do_not_depend_on_how_many_keypoints_are_sampled_at_
         many = rift.describe_rotated(m["mim"], xy, angle, step, chunk=300)
         for chunk in (1, 7, 64):
             assert np.array_equal(rift.describe_rotated(m["mim"], xy, angle, step, chunk=chunk), many)
+
+
+@pytest.mark.parametrize("rows", [1, 7, 128])
+def test_mutual_nearest_within_a_radius_by_blocks_of_rows(rows):
+    from hamta.core.methods.xmodal import mutual_nearest_within
+
+    rng = np.random.default_rng(rows)
+    a, b = np.round(rng.random((300, 8)), 1), np.round(rng.random((260, 8)), 1)  # rounded: many equal distances
+    b[:40] = b[0]
+    p, q = rng.uniform(0, 200, (300, 2)), rng.uniform(0, 200, (260, 2))
+    d2 = ((a[:, None, :] - b[None, :, :]) ** 2).sum(axis=2)
+    far = ((p[:, None, :] - q[None, :, :]) ** 2).sum(axis=2) > 25.0 ** 2
+    masked = np.where(far, np.inf, d2)
+    want_j = masked.argmin(axis=1)
+    want_ok = np.isfinite(masked[np.arange(300), want_j]) & (masked.argmin(axis=0)[want_j] == np.arange(300))
+    j, ok = mutual_nearest_within(d2.copy(), p, q, 25.0, rows=rows)
+    assert 20 < want_ok.sum() < 300
+    assert np.array_equal(ok, want_ok) and np.array_equal(j, want_j)
