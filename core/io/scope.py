@@ -1,7 +1,8 @@
-"""What one run keeps of its input files while it lasts: their descriptions, and one open dataset per
-file. A run reads each input several times (its description samples the pixels for a collar, then the
-working image, the previews); GDAL keeps the blocks a dataset decoded, so on one dataset a large file's
-second decimated read costs a tenth of its first. Outside :func:`run_scope` nothing is kept.
+"""What one run keeps of its input files while it lasts: their descriptions, one open dataset per
+file, and small rasters read whole for their windows. A run reads each input several times (its description
+samples the pixels for a collar, then the working image, the refinement's and the check's windows, the
+previews); GDAL keeps the blocks a dataset decoded, so on one dataset a large file's second decimated read
+costs a tenth of its first. Outside :func:`run_scope` nothing is kept.
 """
 from __future__ import annotations
 
@@ -18,13 +19,27 @@ from ..memory import return_freed_memory
 
 
 class RunFiles:
-    """Descriptions and open datasets by file (see :func:`file_key`), each dataset with its lock (a GDAL
-    dataset is read by one thread at a time)."""
+    """Descriptions, open datasets and small rasters read whole, by file (see :func:`file_key`), each dataset
+    with its lock (a GDAL dataset is read by one thread at a time)."""
 
     def __init__(self):
         self.described = {}
         self._open = {}
+        self._whole = {}
         self._lock = threading.Lock()
+
+    def whole(self, key, read):
+        """``read()`` (a raster read whole, as a tuple of arrays, kept read only) once per run for ``key``:
+        the refinement and the check of every attempt read the same small raster."""
+        with self._lock:
+            found = self._whole.get(key)
+        if found is None:
+            found = read()
+            for array in found:
+                array.setflags(write=False)
+            with self._lock:
+                found = self._whole.setdefault(key, found)
+        return found
 
     def dataset(self, path: str):
         key = file_key(path)
@@ -38,6 +53,7 @@ class RunFiles:
             for ds, _ in self._open.values():
                 ds.close()
             self._open.clear()
+            self._whole.clear()
 
 
 _CURRENT: ContextVar[Optional[RunFiles]] = ContextVar("hamta_run_files", default=None)

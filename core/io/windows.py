@@ -1,8 +1,8 @@
 """Many small full-resolution windows of one raster, as :func:`hamta.core.io.raster.read_image` reads
 them: what the refinement and the check read at hundreds of sites. A small raster without tiles is read
-whole once and its windows cut from memory (a JPEG, or a file in strips, is decoded from its start or a
-strip's for every window GDAL reads). Others are read window by window: within a run
-(:func:`hamta.core.io.scope.run_scope`) through the run's dataset, whose blocks GDAL decoded when the run
+whole once (once per run, within :func:`hamta.core.io.scope.run_scope`) and its windows cut from memory (a
+JPEG, or a file in strips, is decoded from its start or a strip's for every window GDAL reads). Others are
+read window by window: within a run through the run's dataset, whose blocks GDAL decoded when the run
 described the file, else through one open dataset per thread.
 Coordinates: windows in whole full-resolution pixels of the raster (corner convention).
 """
@@ -42,7 +42,9 @@ class WindowReader:
             with dataset_for(self.info.path) as ds:  # the run's, when there is a run
                 if ds.block_shapes[0][1] >= self.info.width:  # no tiles: a window decodes from a row's start
                     plain = dataclasses.replace(self.info, collar_fill=None)  # the collar is masked per window
-                    self._held = read_image(plain, self.bands, dataset=ds)
+                    files, key = current(), file_key(self.info.path)
+                    read = lambda: read_image(plain, self.bands, dataset=ds)  # noqa: E731
+                    self._held = read() if files is None or key is None else files.whole((key, self.bands), read)
         return self
 
     def __exit__(self, *exc):

@@ -84,6 +84,33 @@ def test_a_run_describes_each_file_once_and_reads_it_through_one_dataset(raster_
     assert scope.current() is None and open_raster(path) is not first  # nothing kept outside a run
 
 
+def test_a_run_reads_a_small_raster_whole_once_for_all_its_window_readers(raster_writer, monkeypatch):
+    """The refinement and the check (of every attempt) cut their windows from one whole read per run; the
+    held arrays cannot be changed by a reader, and nothing is held after the run."""
+    import hamta.core.io.windows as windows
+
+    data = np.random.default_rng(3).integers(0, 255, (3, 70, 90)).astype("uint8")
+    path = raster_writer("rgb.tif", data)
+    reads = []
+    real = windows.read_image
+    monkeypatch.setattr(windows, "read_image", lambda *a, **k: reads.append(a[0].path) or real(*a, **k))
+    with scope.run_scope():
+        info = open_raster(path)
+        bands = resolve_bands(info, None)
+        first = []
+        for _ in range(3):
+            with WindowReader(info, bands) as reader:
+                first.append(reader.read(Window(-5, 10, 30, 20)))
+                assert not reader._held[0].flags.writeable
+        with WindowReader(info, (1,)) as one_band:  # other bands: another read
+            one_band.read(Window(0, 0, 8, 8))
+    assert reads == [path, path]
+    assert all(np.array_equal(a, b) for got in first[1:] for a, b in zip(got, first[0]))
+    with WindowReader(open_raster(path), bands):
+        pass
+    assert reads == [path, path, path]
+
+
 def test_a_file_changed_during_a_run_is_described_again(raster_writer):
     path = raster_writer("b.tif", np.full((40, 40), 5, np.uint8))
     with scope.run_scope():
