@@ -44,7 +44,8 @@ class WindowReader:
                     plain = dataclasses.replace(self.info, collar_fill=None)  # the collar is masked per window
                     files, key = current(), file_key(self.info.path)
                     read = lambda: read_image(plain, self.bands, dataset=ds)  # noqa: E731
-                    self._held = read() if files is None or key is None else files.whole((key, self.bands), read)
+                    self._held = read() if files is None or key is None else files.whole((key, plain, self.bands),
+                                                                                         read)
         return self
 
     def __exit__(self, *exc):
