@@ -96,13 +96,13 @@ def describe_rotated(mim: np.ndarray, xy: np.ndarray, angle: np.ndarray, step: i
     cell = ((np.arange(size) // cs)[:, None] * GRID + (np.arange(size) // cs)[None, :]).ravel().astype(np.int32)
     out = np.zeros((len(xy), GRID, GRID, norient), np.float32)
     mimf = mim.astype(np.float32)
-    first = (np.arange(chunk, dtype=np.int32)[:, None] * (GRID * GRID) + cell[None]) * (norient + 1)
-    term = np.empty((min(chunk, len(xy)), size, size), np.float32)
+    cell_keys = (np.arange(chunk, dtype=np.int32)[:, None] * (GRID * GRID) + cell[None]) * (norient + 1)
+    scratch = np.empty((min(chunk, len(xy)), size, size), np.float32)
     for s in range(0, len(xy), chunk):
         p, a = (xy[s:s + chunk] - 0.5).astype(np.float32), angle[s:s + chunk]  # OpenCV px for remap
         c, si = np.cos(a)[:, None, None].astype(np.float32), np.sin(a)[:, None, None].astype(np.float32)
         n = len(p)
-        mx, my, t = c * u, si * u, term[:n]  # in place: x + c u - s v and y + s u + c v, as written
+        mx, my, t = c * u, si * u, scratch[:n]  # in place: x + c u - s v and y + s u + c v, as written
         mx += p[:, 0, None, None]
         mx -= np.multiply(si, v, out=t)
         my += p[:, 1, None, None]
@@ -110,7 +110,7 @@ def describe_rotated(mim: np.ndarray, xy: np.ndarray, angle: np.ndarray, step: i
         vals = cv2.remap(mimf, mx.reshape(n * size, size), my.reshape(n * size, size), cv2.INTER_NEAREST,
                          borderMode=cv2.BORDER_CONSTANT, borderValue=-1).reshape(n, -1).astype(np.int32)
         vals[vals < 0] = norient  # invalid or outside: an extra bin, dropped
-        vals += first[:n]
+        vals += cell_keys[:n]  # each sample's histogram bin: (keypoint, cell, index)
         h = np.bincount(vals.ravel(), minlength=n * GRID * GRID * (norient + 1))
         h = h.reshape(n, GRID, GRID, norient + 1)[..., :norient]
         dominant = h.sum(axis=(1, 2)).argmax(axis=1)
