@@ -97,8 +97,10 @@ def nearest(a: np.ndarray, b: np.ndarray, rows: int = 512) -> np.ndarray:
     """For each row of ``a``, the index of its nearest row of ``b`` (Euclidean): the largest
     ``a.b - |b|^2 / 2`` (``|a|^2`` is the same along a row), a block of ``rows`` rows at a time, so that
     the distances stay in cache instead of filling hundreds of MB (the same indexes, in half the time)."""
-    if reference_blas():
-        return _brute_force(a, b, 1)[1][:, 0].astype(np.intp)
+    if reference_blas():  # OpenCV's brute force (:mod:`hamta.core.blas`)
+        _, index = cv2.batchDistance(a.astype(np.float32), b.astype(np.float32), cv2.CV_32F,
+                                     normType=cv2.NORM_L2SQR, K=1)
+        return index[:, 0].astype(np.intp)
     half = (b * b).sum(1) * -0.5  # exact: a power of two
     out = np.empty(len(a), np.intp)
     for i in range(0, len(a), rows):
@@ -122,15 +124,9 @@ def squared_distances(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return d
 
 
-def _brute_force(a: np.ndarray, b: np.ndarray, k: int):
-    """OpenCV's brute force: the squared distances and indexes of the ``k`` nearest rows of ``b``, for
-    processes where numpy's matrix products run on a reference BLAS (:mod:`hamta.core.blas`)."""
-    return cv2.batchDistance(a.astype(np.float32), b.astype(np.float32), cv2.CV_32F, normType=cv2.NORM_L2SQR, K=k)
-
-
 def _far(p: np.ndarray, q: np.ndarray, radius: float) -> np.ndarray:
-    """(len(p), len(q)) True where points p and q are more than ``radius`` apart."""
-    p, q = p.astype(np.float32), q.astype(np.float32)
+    """(len(p), len(q)) True where points p and q are more than ``radius`` apart (in single precision)."""
+    p, q = p.astype(np.float32, copy=False), q.astype(np.float32, copy=False)
     dx = p[:, None, 0] - q[None, :, 0]
     dx *= dx
     dy = p[:, None, 1] - q[None, :, 1]
@@ -145,6 +141,7 @@ def mutual_nearest_within(d2: np.ndarray, p: np.ndarray, q: np.ndarray, radius: 
     that near (``ok``). ``d2`` is masked in place, ``rows`` rows at a time (the masks stay in cache); the
     columns' nearest rows are kept as the blocks go (first of equals, as ``argmin``)."""
     n, m = d2.shape
+    p, q = p.astype(np.float32), q.astype(np.float32)  # once, not per block
     j = np.empty(n, np.intp)
     column_min, column_arg = np.full(m, np.inf, d2.dtype), np.zeros(m, np.intp)
     for i in range(0, n, rows):
