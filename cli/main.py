@@ -35,14 +35,18 @@ def _pairs(values: List[str]) -> dict:
 
 def cmd_register(args) -> int:
     from ..core import UnverifiedResult, run
-    from ..core.batch.runner import scheduler_map
     from ..core.outputs import OutputPaths
 
     options, output = settings_from(args)
     _outside_the_cache(args.out)
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format, overwrite=args.overwrite,
                                   only=None if args.outputs is None else args.outputs.split(","))
-    cluster = contextlib.nullcontext() if not args.scheduler else scheduler_map(args.scheduler)
+    if args.scheduler:
+        from ..core.batch.runner import scheduler_map  # Dask's modules only for a run that uses a cluster
+
+        cluster = scheduler_map(args.scheduler)
+    else:
+        cluster = contextlib.nullcontext()
     try:
         with cluster as map_chunks:
             result, written = run(args.target, args.reference, paths, method=args.method, params=_pairs(args.param),

@@ -84,3 +84,17 @@ class WindowReader:
                 self._opened.append(ds)
         return ds
 
+
+
+def read_whole(info: RasterInfo, bands) -> tuple:
+    """(image, valid) of the whole raster as :func:`read_image` gives them, read only. Within a run, a raster
+    small enough to hold is read once for this and for its window readers (see :meth:`RunFiles.whole`)."""
+    files, key = current(), file_key(info.path)
+    if files is None or key is None or info.width * info.height > HOLD_PIXELS:
+        return read_image(info, bands)
+    plain = dataclasses.replace(info, collar_fill=None)
+    image, valid = files.whole((key, plain, tuple(bands)), lambda: read_image(plain, bands))
+    if info.collar_fill is None:
+        return image, valid
+    valid = valid & ~info.collar_fill.window_mask(0, 0, info.width, info.height, valid.shape)
+    return np.where(valid, image, 0).astype(np.float32, copy=False), valid

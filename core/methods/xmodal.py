@@ -81,16 +81,21 @@ LOCAL_PATCH_PX = 72
 DESCRIPTOR_STEP = 2  # rotated patches sampled every 2 px: 4x cheaper, 64 samples per cell
 
 
-def _pyramid_features(image, valid, f0: float, levels: int, points: int):
-    """(keypoints full-res px, orientations rad, descriptors, level factors) over the pyramid."""
-    out = []
-    for k in range(levels):
-        f = f0 * 2 ** (-k / 2)
-        img, ok, s = resize(image, valid, f)
-        feats = rift.rotated_features(img, ok, int(points * (1.0, 0.7, 0.5, 0.4, 0.3)[k]), DESCRIPTOR_STEP)
-        xy = apply(invert(s), feats.keypoints.xy)
-        out.append((xy, np.radians(feats.keypoints.angle), feats.descriptors, np.full(len(xy), f)))
-    return [np.concatenate([o[i] for o in out]) for i in range(4)]
+def _level_features(image, valid, f0: float, k: int, points: int):
+    """(keypoints full-res px, orientations rad, descriptors, level factors) at pyramid level ``k``."""
+    f = f0 * 2 ** (-k / 2)
+    img, ok, s = resize(image, valid, f)
+    feats = rift.rotated_features(img, ok, int(points * (1.0, 0.7, 0.5, 0.4, 0.3)[k]), DESCRIPTOR_STEP)
+    xy = apply(invert(s), feats.keypoints.xy)
+    return xy, np.radians(feats.keypoints.angle), feats.descriptors, np.full(len(xy), f)
+
+
+def _pyramid_features(images, f0: float, levels: int, points: int) -> list:
+    """For each (image, valid) of ``images``, its features over the pyramid (see :func:`_level_features`); every
+    level of every image on the threads at once, the largest first."""
+    jobs = [(k, i) for k in range(levels) for i in range(len(images))]
+    found = dict(zip(jobs, threaded(lambda job: _level_features(*images[job[1]], f0, job[0], points), jobs)))
+    return [[np.concatenate([found[k, i][c] for k in range(levels)]) for c in range(4)] for i in range(len(images))]
 
 
 def nearest(a: np.ndarray, b: np.ndarray, rows: int = 512) -> np.ndarray:
@@ -264,8 +269,7 @@ def match(target, reference, params: XmodalParams, monitor: Monitor, seed: int =
     t0 = time.perf_counter()
     t_img, t_ok, r_img, r_ok = target.data, target.valid, reference.data, reference.valid
     f = min(1.0, params.feat_px / max(r_img.shape))
-    t_feat, r_feat = threaded(lambda img: _pyramid_features(img[0], img[1], f, params.levels, params.points),
-                              [(t_img, t_ok), (r_img, r_ok)])
+    t_feat, r_feat = _pyramid_features([(t_img, t_ok), (r_img, r_ok)], f, params.levels, params.points)
     monitor.report(0.55, "RIFT features")
     hyps = vote_hypotheses(t_feat, r_feat, params.hypotheses, seed)
     diag = {"n_hypotheses": len(hyps), "features_s": round(time.perf_counter() - t0, 3)}
@@ -279,10 +283,13 @@ def match(target, reference, params: XmodalParams, monitor: Monitor, seed: int =
     hi, lo = max(need) * 2 ** 0.25 * spread ** 0.5, min(need) * 2 ** -0.25 / spread ** 0.5
     pyr = TargetPyramid(t_img, t_ok, min(hi, 1.0), int(math.ceil(2 * math.log2(hi / lo))) + 2, bins=9, sub=4,
                         min_factor=lo * 0.7)
-    checked = sorted((_check(corr, pyr, h, f_c) for h in hyps), key=lambda c: -c[0])
-    monitor.report(0.75, "pose check")
     cache = _LocalReference()
-    local_reference(r_img, r_ok, params, cache)
+
+    def check_or_describe(h):  # the reference's local features are computed beside the pose checks
+        return local_reference(r_img, r_ok, params, cache) if h is None else _check(corr, pyr, h, f_c)
+
+    checked = sorted(threaded(check_or_describe, [None] + hyps)[1:], key=lambda c: -c[0])
+    monitor.report(0.75, "pose check")
     refine = lambda m: _refined(t_img, t_ok, r_img, r_ok, m, params, seed, cache, monitor)  # noqa: E731
     best = (0, None, None, None)
     for found in threaded(refine, [m for _, m in checked[:params.refine_best]]):  # in order: ties go to the first

@@ -19,6 +19,7 @@ import numpy as np
 from ..coords import as_xy
 from ..estimation.inverse import invert_model
 from ..io.raster import RasterInfo, read_image, resolve_bands
+from ..io.windows import read_whole
 
 PREVIEW_PX = 800  # longest side of the previews
 GRID_STEP_PX = 20  # preview px between the nodes where the model is inverted exactly
@@ -61,9 +62,12 @@ def read_preview(info: RasterInfo, band: Optional[int]) -> Preview:
     so that the drawings keep their size whatever the raster's.
     """
     rows, cols = preview_shape(info.width, info.height)
-    shape = (min(rows, info.height), min(cols, info.width))
-    image, valid = read_image(info, resolve_bands(info, band), out_shape=shape)
-    if shape != (rows, cols):
+    bands = resolve_bands(info, band)
+    if rows >= info.height and cols >= info.width:  # read whole: within a run, the read the check made
+        image, valid = read_whole(info, bands)
+    else:
+        image, valid = read_image(info, bands, out_shape=(min(rows, info.height), min(cols, info.width)))
+    if image.shape != (rows, cols):
         image = cv2.resize(image, (cols, rows), interpolation=cv2.INTER_LINEAR)
         valid = cv2.resize(valid.astype(np.uint8), (cols, rows), interpolation=cv2.INTER_NEAREST) > 0
     return Preview(stretch(image, valid), valid, (info.width / cols, info.height / rows))

@@ -102,12 +102,8 @@ def verify(model, target: RasterInfo, target_bands, reference: RasterInfo, refer
     extent = overlap_grid(overlap)
     with WindowReader(target, target_bands) as targets, WindowReader(reference, reference_bands) as references:
         def read(points, mon):
-            out = []
-            for i, p in enumerate(points):
-                out.append(read_site(model, p, targets, references, side, params.search_px))
-                if i % 16 == 0:
-                    mon.report(i / max(len(points), 1), "verifying")
-            return out
+            return threaded(lambda p: read_site(model, p, targets, references, side, params.search_px), points, mon,
+                            "verifying")
 
         centre = grid_centre(overlap) if overlap is not None else np.zeros(2)
         sites = site_grid(outline, overlap, reference, side, params)

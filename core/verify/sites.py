@@ -9,6 +9,7 @@ inverse maps them into target pixels for reading.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 from typing import List, Optional, Tuple
 
 import cv2
@@ -143,8 +144,7 @@ def read_site(model, p, targets: WindowReader, references: WindowReader, side: i
         return None
     q, jinv = inverse
     size = t + 2 * s
-    gx, gy = np.meshgrid(np.arange(size) + x0 - s + 0.5, np.arange(size) + y0 - s + 0.5)
-    src = q + (np.column_stack([gx.ravel(), gy.ravel()]) - p) @ jinv.T
+    src = q + (_lattice(size) + [x0 - s + 0.5, y0 - s + 0.5] - p) @ jinv.T
     lo, hi = xy_bounds(src)
     c0, r0 = np.floor(lo).astype(int) - 2
     c1, r1 = np.ceil(hi).astype(int) + 2
@@ -165,18 +165,28 @@ def read_site(model, p, targets: WindowReader, references: WindowReader, side: i
     return tmpl, ok, warped, wok
 
 
+@lru_cache(maxsize=8)
+def _lattice(size: int) -> np.ndarray:
+    """(size * size, 2) pixel offsets (x, y) of a square, row by row (read only)."""
+    gx, gy = np.meshgrid(np.arange(size), np.arange(size))
+    out = np.column_stack([gx.ravel(), gy.ravel()])
+    out.setflags(write=False)
+    return out
+
+
 def bilinear(img: np.ndarray, rows_cols: np.ndarray) -> np.ndarray:
     """``img`` sampled bilinearly at (rows, cols) in pixel-centre coordinates (0 = the first pixel's
     centre), positions clamped to the image (scipy's ``map_coordinates`` order 1, mode 'nearest')."""
     h, w = img.shape
     r = np.clip(rows_cols[0], 0, h - 1)
     c = np.clip(rows_cols[1], 0, w - 1)
-    r0 = np.minimum(np.floor(r).astype(int), max(h - 2, 0))
-    c0 = np.minimum(np.floor(c).astype(int), max(w - 2, 0))
-    r1, c1 = np.minimum(r0 + 1, h - 1), np.minimum(c0 + 1, w - 1)
+    r0 = np.minimum(r.astype(np.intp), max(h - 2, 0))  # positions are clamped to >= 0: truncation is the floor
+    c0 = np.minimum(c.astype(np.intp), max(w - 2, 0))
     fr, fc = r - r0, c - c0
-    top = img[r0, c0] * (1 - fc) + img[r0, c1] * fc
-    bottom = img[r1, c0] * (1 - fc) + img[r1, c1] * fc
+    flat, first = img.ravel(), r0 * w + c0
+    right, below = (1 if w > 1 else 0), (w if h > 1 else 0)
+    top = flat.take(first) * (1 - fc) + flat.take(first + right) * fc
+    bottom = flat.take(first + below) * (1 - fc) + flat.take(first + below + right) * fc
     return top * (1 - fr) + bottom * fr
 
 
@@ -186,8 +196,8 @@ def nearest_valid(valid: np.ndarray, rows_cols: np.ndarray) -> np.ndarray:
     h, w = valid.shape
     rows, cols = rows_cols
     inside = (rows >= 0) & (rows <= h - 1) & (cols >= 0) & (cols <= w - 1)
-    r, c = np.floor(rows + 0.5).astype(int), np.floor(cols + 0.5).astype(int)
-    return inside & valid[np.clip(r, 0, h - 1), np.clip(c, 0, w - 1)]
+    r, c = np.floor(rows + 0.5).astype(np.intp), np.floor(cols + 0.5).astype(np.intp)
+    return inside & valid.ravel().take(np.clip(r, 0, h - 1) * w + np.clip(c, 0, w - 1))
 
 
 def descriptors(pair) -> Tuple[np.ndarray, np.ndarray]:

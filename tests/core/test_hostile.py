@@ -68,6 +68,7 @@ def test_a_hostile_server_gets_a_clear_error_or_a_whole_answer_never_a_leak(faul
 
 
 
+@pytest.mark.processes
 @pytest.mark.parametrize("signal_name", ["SIGINT", "SIGTERM"])
 @pytest.mark.parametrize("fault", ["drip-headers", "silent", "drip-body"])
 def test_ctrl_c_or_sigterm_ends_a_run_at_once_whatever_the_server_does(fault, signal_name, hostile, landsat_crop,

@@ -151,6 +151,8 @@ def test_preview_coordinates_put_pixel_centres_at_integers():
 
 
 def test_previews_are_read_decimated(raster_writer, monkeypatch):
+    import hamta.core.io.windows as windows
+
     shapes = []
     real = report_preview.read_image
 
@@ -159,13 +161,14 @@ def test_previews_are_read_decimated(raster_writer, monkeypatch):
         return real(info, bands, window, out_shape, dataset)
 
     monkeypatch.setattr(report_preview, "read_image", spy)
+    monkeypatch.setattr(windows, "read_image", spy)
     rng = np.random.default_rng(1)
     big = open_raster(raster_writer("big.tif", rng.integers(0, 255, (1500, 2400), dtype=np.uint8)))
     p = read_preview(big, None)
     assert shapes[-1] == (500, 800) and p.image.shape == (500, 800) and p.scale == (3.0, 3.0)
     small = open_raster(raster_writer("small.tif", rng.integers(0, 255, (50, 100), dtype=np.uint8)))
     p = read_preview(small, None)
-    assert shapes[-1] == (50, 100) and p.image.shape == (400, 800) and p.scale == (0.125, 0.125)
+    assert shapes[-1] is None and p.image.shape == (400, 800) and p.scale == (0.125, 0.125)  # read whole
 
 
 def test_cancel_writes_nothing(sift_result, tmp_path):

@@ -10,7 +10,7 @@ from rasterio.windows import Window
 
 from hamta.core.io import scope
 from hamta.core.io.raster import open_raster, read_image, resolve_bands
-from hamta.core.io.windows import WindowReader
+from hamta.core.io.windows import WindowReader, read_whole
 from hamta.core.parallel import threaded
 
 
@@ -109,6 +109,31 @@ def test_a_run_reads_a_small_raster_whole_once_for_all_its_window_readers(raster
     with WindowReader(open_raster(path), bands):
         pass
     assert reads == [path, path, path]
+
+
+@pytest.mark.parametrize("kind", ["grey", "rgb-collar"])
+def test_the_report_s_whole_read_is_the_window_readers_one(raster_writer, monkeypatch, kind):
+    """A run that held a small raster for its windows gives the report's preview the same read, collar masked
+    as :func:`read_image` masks it; outside a run, the raster is read."""
+    import hamta.core.io.windows as windows
+
+    data = _collared() if kind == "rgb-collar" else np.random.default_rng(4).integers(0, 255, (60, 80)).astype("uint8")
+    path = raster_writer("x.tif", data)
+    reads = []
+    real = windows.read_image
+    monkeypatch.setattr(windows, "read_image", lambda *a, **k: reads.append(a[0].path) or real(*a, **k))
+    info = open_raster(path)
+    assert (info.collar_fill is not None) == (kind == "rgb-collar")
+    bands = resolve_bands(info, None)
+    expected = read_image(info, bands)
+    with scope.run_scope():
+        with WindowReader(open_raster(path), bands):
+            pass
+        got = read_whole(open_raster(path), bands)
+    assert reads == [path]
+    assert all(np.array_equal(a, b) and a.dtype == b.dtype for a, b in zip(got, expected))
+    assert all(np.array_equal(a, b) for a, b in zip(read_whole(info, bands), expected))
+    assert reads == [path, path]
 
 
 def test_a_file_changed_during_a_run_is_described_again(raster_writer):

@@ -46,7 +46,7 @@ def test_rotation_invariant_descriptors_match_across_a_turn():
     assert right.mean() > 0.3 and right.sum() > 20
 
 
-@pytest.mark.parametrize("category,pair", [("mm-infrared", 1), ("mm-night", 13), ("mm-map", 1)])
+@pytest.mark.parametrize("category,pair", [("mm-night", 13), ("mm-map", 1)])  # infrared 1: the test of threads
 def test_xmodal_registers_real_cross_modal_pairs_and_the_check_verifies_them(shared, category, pair):
     case = build(category, pair, str(shared / "data"))
     result = register(case.target, case.reference, "xmodal", options=RegisterOptions(tolerance_px=15, pixel_mode=True))
@@ -115,3 +115,25 @@ def test_mutual_nearest_within_a_radius_by_blocks_of_rows(rows):
     j, ok = mutual_nearest_within(d2.copy(), p, q, 25.0, rows=rows)
     assert 20 < want_ok.sum() < 300
     assert np.array_equal(ok, want_ok) and np.array_equal(j, want_j)
+
+
+def test_xmodal_and_its_check_give_the_same_answer_on_one_thread_as_on_three(shared, monkeypatch):
+    """The pyramid levels of both images, the pose checks beside the reference's local features, the
+    full-resolution windows and the check's sites run on threads: the same model, points and evidence
+    whatever the number of cores (and the right answer, on a real infrared-optical pair)."""
+    from hamta.core import parallel
+
+    case = build("mm-infrared", 1, str(shared / "data"))
+    runs = []
+    for threads in (1, 3):
+        monkeypatch.setattr(parallel, "THREADS", threads)
+        r = register(case.target, case.reference, "xmodal", options=RegisterOptions(tolerance_px=15, pixel_mode=True))
+        v = r.verification
+        runs.append((r.model.matrix, np.array([g.target_px + g.reference_px for g in r.gcps]), r.diagnostics,
+                     v.verdict, v.offset_xy, v.peak, v.chance, v.error_bound_px))
+    (m1, g1, d1, *v1), (m3, g3, d3, *v3) = runs
+    assert np.array_equal(m1, m3) and np.array_equal(g1, g3) and len(g1) >= 100
+    assert {k: v for k, v in d1.items() if not k.endswith("_s")} == {k: v for k, v in d3.items() if not k.endswith("_s")}
+    assert v1[0] == v3[0] == "verified" and d1["local_inliers"] >= 20
+    assert math.sqrt(np.mean(case.errors(r.model) ** 2)) < 5.0
+    assert all(np.array_equal(a, b, equal_nan=True) for a, b in zip(v1[1:3], v3[1:3])) and v1[3:] == v3[3:]
