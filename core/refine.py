@@ -242,16 +242,16 @@ def _refine_structural(pts, inverse, targets: WindowReader, references: WindowRe
         tiles.setdefault(key, []).append(i)
     found, done = {}, 0
     for members in tiles.values():
-        report = lambda k, done=done: monitor.report((done + k) / len(pts), "refining")  # noqa: E731
-        found.update(_refine_tile(corners[members], members, inverse, targets, references, params, report))
+        span = monitor.span(done / len(pts), (done + len(members)) / len(pts))
+        found.update(_refine_tile(corners[members], members, inverse, targets, references, params, span))
         done += len(members)
     return [found[i] for i in range(len(pts)) if i in found]
 
 
 def _refine_tile(corners, members, inverse, targets: WindowReader, references: WindowReader, params: RefineParams,
-                 report):
-    """{point index: (target px, reference px, ncc)} of the windows whose templates start at ``corners``;
-    ``report(k)`` after every ``POINTS_PER_REPORT`` windows."""
+                 monitor: Monitor):
+    """{point index: (target px, reference px, ncc)} of the windows whose templates start at ``corners``, measured
+    on threads; ``monitor`` reports the share of them done."""
     t, s, m = params.template_px, params.search_px, CFOG_MARGIN_PX
     target, reference = targets.info, references.info
     inside = ((corners >= 0) & (corners + t <= [reference.width, reference.height])).all(axis=1)
@@ -282,8 +282,6 @@ def _refine_tile(corners, members, inverse, targets: WindowReader, references: W
 
     def window(k):
         (x0, y0), span = corners[k], spans[k]
-        if k % POINTS_PER_REPORT == 0:
-            report(k)
         tx, ty = x0 - rx0, y0 - ry0
         if not usable[k] or ref_ok[ty:ty + t, tx:tx + t].mean() < 0.9 or ref[ty:ty + t, tx:tx + t].std() < 1e-6:
             return None
@@ -293,7 +291,7 @@ def _refine_tile(corners, members, inverse, targets: WindowReader, references: W
         surface = ncc_surface(dt[:, ay:ay + t + 2 * s, ax:ax + t + 2 * s], dr[:, ty:ty + t, tx:tx + t])
         return _found(surface, s, params.min_ncc, inverse, x0, y0, t)
 
-    found = threaded(window, range(len(members)))
+    found = threaded(window, range(len(members)), monitor, "refining")
     return {i: f for i, f in zip(members, found) if f is not None}
 
 

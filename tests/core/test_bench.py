@@ -103,6 +103,7 @@ def test_a_bug_in_a_method_is_a_crash_not_a_failure():
     assert (sift[header.index("crashes")], x[header.index("crashes")]) == ("1", "2")
 
 
+@pytest.mark.bench
 def test_the_speed_study_times_hamta_and_the_opencv_script_on_a_small_pair(tmp_path, shared, monkeypatch):
     """One repeat of the speed family's small-optical case: both run in fresh processes, both models scored."""
     from types import SimpleNamespace
