@@ -85,7 +85,6 @@ class WindowReader:
         return ds
 
 
-
 def read_whole(info: RasterInfo, bands) -> tuple:
     """(image, valid) of the whole raster as :func:`read_image` gives them, read only. Within a run, a raster
     small enough to hold is read once for this and for its window readers (see :meth:`RunFiles.whole`)."""
