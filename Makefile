@@ -33,10 +33,10 @@ test-wheels: $(VENV)/.learned
 	$(VENV)/bin/python -P -m pytest tests/core -q -rs --durations=15
 
 # Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...);
-# the wheel build, the end-to-end benchmark (make bench runs there) and the tests that interrupt, kill or race
-# whole processes (stack-independent) run on the PyPI-wheels half only.
+# the wheel build, the end-to-end benchmark (make bench runs there), the tests that interrupt, kill or race
+# whole processes and the hostile-server matrix (stack-independent) run on the PyPI-wheels half only.
 test-debian: $(QVENV)/.ok
-	$(QVENV)/bin/python -P -m pytest tests -q -rs --durations=15 -m "not packaging and not bench and not processes"
+	$(QVENV)/bin/python -P -m pytest tests -q -rs --durations=15 -m "not packaging and not bench and not processes and not hostile"
 
 bench: $(VENV)/.ok
 	$(VENV)/bin/hamta bench

@@ -15,6 +15,8 @@ from hamta.core.basemap.tiles import decode_tile
 from hamta.core.errors import HamtaError
 from hamta.core.outputs import OutputPaths
 
+pytestmark = pytest.mark.hostile
+
 # Tight bounds so that a fault costs seconds: one retry, 20 s of fetching a run, each request 0.6 s whole
 # (1.5 s where the run must get through: a loaded machine renders the good tiles).
 FAST = dict(retries=1, backoff_s=0.01, budget_s=20.0, max_bytes=4 << 20)
