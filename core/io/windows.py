@@ -41,11 +41,7 @@ class WindowReader:
         if self._hold:
             with dataset_for(self.info.path) as ds:  # the run's, when there is a run
                 if ds.block_shapes[0][1] >= self.info.width:  # no tiles: a window decodes from a row's start
-                    plain = dataclasses.replace(self.info, collar_fill=None)  # the collar is masked per window
-                    files, key = current(), file_key(self.info.path)
-                    read = lambda: read_image(plain, self.bands, dataset=ds)  # noqa: E731
-                    self._held = read() if files is None or key is None else files.whole((key, plain, self.bands),
-                                                                                         read)
+                    self._held = _whole_without_collar(self.info, self.bands, ds)  # the collar is masked per window
         return self
 
     def __exit__(self, *exc):
@@ -85,14 +81,21 @@ class WindowReader:
         return ds
 
 
-def read_whole(info: RasterInfo, bands) -> tuple:
-    """(image, valid) of the whole raster as :func:`read_image` gives them, read only. Within a run, a raster
-    small enough to hold is read once for this and for its window readers (see :meth:`RunFiles.whole`)."""
-    files, key = current(), file_key(info.path)
-    if files is None or key is None or info.width * info.height > HOLD_PIXELS:
-        return read_image(info, bands)
+def _whole_without_collar(info: RasterInfo, bands, dataset=None) -> tuple:
+    """(image, valid) of the whole raster, its collar not masked; within a run, read once (read only) for every
+    caller (see :meth:`RunFiles.whole`)."""
     plain = dataclasses.replace(info, collar_fill=None)
-    image, valid = files.whole((key, plain, tuple(bands)), lambda: read_image(plain, bands))
+    read = lambda: read_image(plain, bands, dataset=dataset)  # noqa: E731
+    files, key = current(), file_key(info.path)
+    return read() if files is None or key is None else files.whole((key, plain, tuple(bands)), read)
+
+
+def read_whole(info: RasterInfo, bands) -> tuple:
+    """(image, valid) of the whole raster as :func:`read_image` gives them. Within a run, a raster small enough
+    to hold is read once for this and for its window readers (read only)."""
+    if info.width * info.height > HOLD_PIXELS:
+        return read_image(info, bands)
+    image, valid = _whole_without_collar(info, bands)
     if info.collar_fill is None:
         return image, valid
     valid = valid & ~info.collar_fill.window_mask(0, 0, info.width, info.height, valid.shape)

@@ -210,18 +210,12 @@ def _check(corr: ShiftCorrelator, pyr: TargetPyramid, m: np.ndarray, f_ref: floa
     return best
 
 
-class _LocalReference(dict):
-    """Reference-side work of local RIFT, done once per reference."""
-
-
-def local_rift(target, t_valid, reference, r_valid, m, params: XmodalParams, radius: float, seed: int,
-               cache: _LocalReference):
-    """Refine ``m`` by plain MIM matching between the reference and the target warped by ``m`` at
-    ``params.local_px``: mutual nearest neighbours within ``radius`` x the working size, then a
+def local_rift(target, t_valid, reference_local, m, radius: float, seed: int):
+    """Refine ``m`` by plain MIM matching between the reference (its :func:`local_reference`) and the target
+    warped by ``m`` at that size: mutual nearest neighbours within ``radius`` x the working size, then a
     similarity RANSAC (3 px). Returns (refined m or None, target px (K, 2), reference px (K, 2) of
     its inliers) in full-resolution working px."""
-    local_reference(reference, r_valid, params, cache)
-    shape, sr, rfeat = cache["ref"]
+    shape, sr, rfeat = reference_local
     fwd = compose(sr, m)
     tw, tok = warp(target, t_valid, fwd, shape)
     none = (None, np.zeros((0, 2)), np.zeros((0, 2)))
@@ -243,21 +237,20 @@ def local_rift(target, t_valid, reference, r_valid, m, params: XmodalParams, rad
     return refined, apply(invert(fwd), src[inliers]), apply(back, dst[inliers])
 
 
-def local_reference(reference, r_valid, params: XmodalParams, cache: _LocalReference) -> None:
-    """The reference's plain RIFT features at ``params.local_px``, once (before threads share ``cache``)."""
-    if "ref" not in cache:
-        f = min(1.0, params.local_px / max(reference.shape))
-        ref, rok, sr = resize(reference, r_valid, f)
-        cache["ref"] = (ref.shape, sr, rift.plain_features(ref, rok, 1500, LOCAL_PATCH_PX))
+def local_reference(reference, r_valid, params: XmodalParams) -> tuple:
+    """(shape, scaling, plain RIFT features) of the reference at ``params.local_px``, for :func:`local_rift`."""
+    f = min(1.0, params.local_px / max(reference.shape))
+    ref, rok, sr = resize(reference, r_valid, f)
+    return ref.shape, sr, rift.plain_features(ref, rok, 1500, LOCAL_PATCH_PX)
 
 
-def _refined(t_img, t_ok, r_img, r_ok, m, params: XmodalParams, seed: int, cache, monitor: Monitor):
+def _refined(t_img, t_ok, reference_local, m, params: XmodalParams, seed: int, monitor: Monitor):
     """Hypothesis ``m`` refined by local RIFT at each of ``LOCAL_RADII`` while it keeps enough inliers:
     (model, target px, reference px)."""
     found = (m, np.zeros((0, 2)), np.zeros((0, 2)))
     for radius in LOCAL_RADII:
         monitor.check()
-        new, src, dst = local_rift(t_img, t_ok, r_img, r_ok, found[0], params, radius, seed, cache)
+        new, src, dst = local_rift(t_img, t_ok, reference_local, found[0], radius, seed)
         if new is None or len(src) < params.min_inliers:
             break
         found = (new, src, dst)
@@ -283,14 +276,12 @@ def match(target, reference, params: XmodalParams, monitor: Monitor, seed: int =
     hi, lo = max(need) * 2 ** 0.25 * spread ** 0.5, min(need) * 2 ** -0.25 / spread ** 0.5
     pyr = TargetPyramid(t_img, t_ok, min(hi, 1.0), int(math.ceil(2 * math.log2(hi / lo))) + 2, bins=9, sub=4,
                         min_factor=lo * 0.7)
-    cache = _LocalReference()
-
-    def check_or_describe(h):  # the reference's local features are computed beside the pose checks
-        return local_reference(r_img, r_ok, params, cache) if h is None else _check(corr, pyr, h, f_c)
-
-    checked = sorted(threaded(check_or_describe, [None] + hyps)[1:], key=lambda c: -c[0])
+    # the reference's local features beside the pose checks
+    jobs = [lambda: local_reference(r_img, r_ok, params)] + [lambda h=h: _check(corr, pyr, h, f_c) for h in hyps]
+    reference_local, *checks = threaded(lambda job: job(), jobs)
+    checked = sorted(checks, key=lambda c: -c[0])
     monitor.report(0.75, "pose check")
-    refine = lambda m: _refined(t_img, t_ok, r_img, r_ok, m, params, seed, cache, monitor)  # noqa: E731
+    refine = lambda m: _refined(t_img, t_ok, reference_local, m, params, seed, monitor)  # noqa: E731
     best = (0, None, None, None)
     for found in threaded(refine, [m for _, m in checked[:params.refine_best]]):  # in order: ties go to the first
         if len(found[1]) > best[0]:
