@@ -92,8 +92,10 @@ def _border(a: np.ndarray) -> np.ndarray:
 
 def _touching_border(a: np.ndarray, connectivity: int) -> np.ndarray:
     n, labels = cv2.connectedComponents(a.astype(np.uint8), connectivity=connectivity)
-    touching = np.unique(_border(labels))
-    return np.isin(labels, touching[touching > 0])
+    touching = np.zeros(n, bool)
+    touching[_border(labels)] = True
+    touching[0] = False
+    return touching[labels]
 
 
 def _footprint(collar: np.ndarray) -> bool:

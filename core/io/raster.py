@@ -13,11 +13,13 @@ import os
 import threading
 import warnings
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import Optional, Tuple
 
 import numpy as np
 import rasterio
 from affine import Affine
+from rasterio.crs import CRS
 from rasterio.enums import ColorInterp, MaskFlags, Resampling
 from rasterio.errors import NodataShadowWarning, NotGeoreferencedWarning, RasterioError
 from rasterio.windows import Window
@@ -185,6 +187,13 @@ def check_on_earth(info: RasterInfo, role: str) -> None:
     if not (np.isfinite(lon).all() and np.isfinite(lat).all() and np.abs(lat).max() <= 90.0):
         raise InputError(f"The {role} raster '{info.path}' is georeferenced outside what its CRS ({crs.name}) can "
                          "place on the Earth: its geotransform or CRS is wrong.")
+
+
+@lru_cache(maxsize=1)
+def placeholder_crs() -> CRS:
+    """A projected CRS that lets GDAL resample between two grids of rasters without one (looked up
+    once, when first needed: PROJ's database costs 10 ms)."""
+    return CRS.from_epsg(3857)
 
 
 def numpy_dtype(name: str) -> np.dtype:

@@ -27,10 +27,8 @@ from ..coords import as_xy, compose, continue_longitudes, map_to_pixel, pixel_to
 from ..errors import GeoreferencingError, InputError, NoOverlapError
 from ..options import TARGET_GEOREF
 from ..parallel import threaded
-from .raster import RasterInfo, budget_shape, read_image
+from .raster import RasterInfo, budget_shape, placeholder_crs, read_image
 
-# Any projected CRS lets GDAL resample between two grids that share an unnamed CRS.
-_PLACEHOLDER_CRS = CRS.from_epsg(3857)
 # Up to this many source px per destination px GDAL's bilinear kernel keeps its plain 2 x 2 support.
 _PLAIN_BILINEAR_SCALE = 1.01
 _STRIP_ROWS = 256
@@ -319,8 +317,8 @@ def _resample_onto(data, valid, src_transform, src_crs, dst_transform, dst_crs, 
 
 
 def _gdal_resample(data, valid, src_transform, src_crs, dst_transform, dst_crs, shape):
-    src_crs = src_crs or _PLACEHOLDER_CRS
-    dst_crs = dst_crs or _PLACEHOLDER_CRS
+    src_crs = src_crs or placeholder_crs()
+    dst_crs = dst_crs or placeholder_crs()
     src = np.where(valid, data, np.nan).astype(np.float32)
     out = np.full(shape, np.nan, np.float32)
     reproject(src, out, src_transform=src_transform, src_crs=src_crs, dst_transform=dst_transform,

@@ -37,7 +37,7 @@ from rasterio.windows import Window
 from ..coords import as_xy, compose, raster_outline
 from ..errors import OutputError
 from ..estimation.models import local_jacobian
-from ..io.raster import numpy_dtype
+from ..io.raster import numpy_dtype, placeholder_crs
 from ..options import FORMAT, GRID, RESAMPLING, OutputOptions
 from ..parallel import THREADS
 from ..progress import Monitor
@@ -46,7 +46,6 @@ from .moved import write_moved
 from .spline_warp import spline_applies, spline_rows
 from .tags import verdict_tags
 
-PLACEHOLDER_CRS = CRS.from_epsg(3857)  # lets GDAL warp between two grids of a raster without CRS
 STRIP_BYTES = 32 * 2 ** 20  # a strip of output rows (all bands); two are in memory at a time
 WARP_MEMORY_MB = 256
 # NUM_THREADS: DEFLATE compresses blocks on every core (a third of the writing time on two).
@@ -219,7 +218,7 @@ def write_warped(path: str, result, output: OutputOptions = OutputOptions(), mon
                     monitor)
         return fmt
     transform, width, height, crs = output_grid(result, output.grid, output.resolution, output.crs)
-    warp_crs = crs or PLACEHOLDER_CRS
+    warp_crs = crs or placeholder_crs()
     with scratch_dir(scratch) as tmp:
         vrt = os.path.join(tmp, f"model-{os.getpid()}.vrt")
         options = write_model_vrt(vrt, result, warp_crs.to_wkt(), scratch=tmp)
