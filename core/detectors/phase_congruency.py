@@ -23,7 +23,8 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy import fft
+
+from ..fourier import fft2, ifft2
 
 
 @dataclass(frozen=True)
@@ -61,8 +62,8 @@ def _filters(rows: int, cols: int, params: PhaseCongruencyParams):
     """Per orientation, the complex64-ready filters (log-Gabor x angular spread) of every scale,
     stacked (nscale, rows, cols)."""
     p = params
-    fy = fft.fftfreq(rows)[:, None]
-    fx = fft.fftfreq(cols)[None, :]
+    fy = np.fft.fftfreq(rows)[:, None]
+    fx = np.fft.fftfreq(cols)[None, :]
     radius = np.sqrt(fx ** 2 + fy ** 2)
     radius[0, 0] = 1.0
     theta = np.arctan2(-fy, fx)
@@ -93,10 +94,10 @@ def _orientations(image: np.ndarray, p: PhaseCongruencyParams):
     energy), both (H, W) float32."""
     img = image.astype(np.float32)
     rows, cols = img.shape
-    spectrum = fft.fft2(img, workers=-1).astype(np.complex64)
+    spectrum = fft2(img).astype(np.complex64, copy=False)
     eps = np.float32(p.eps)
     for filters in _filters(rows, cols, p):
-        eo = fft.ifft2(spectrum * filters, workers=-1, overwrite_x=True)  # every scale at once: same values, faster
+        eo = ifft2(spectrum * filters)  # every scale at once: same values, faster
         amplitude = np.abs(eo)
         sum_an = amplitude.sum(axis=0)
         max_an = amplitude.max(axis=0)

@@ -19,10 +19,10 @@ from typing import Optional
 
 import cv2
 import numpy as np
-from scipy import fft as sfft
 
 from ..coords import matrix_corner_to_opencv
 from ..estimation.affine2d import compose, invert, resize
+from ..fourier import irfft2, next_fast_len, rfft2
 
 
 def _erode(valid: np.ndarray, r: int) -> np.ndarray:
@@ -107,16 +107,16 @@ class ShiftCorrelator:
     def __init__(self, ref_desc: np.ndarray, r_valid: np.ndarray, pad: int, min_overlap: float = 0.25):
         h, w = r_valid.shape
         self.pad = pad
-        self.shape = (sfft.next_fast_len(h + 2 * pad, True), sfft.next_fast_len(w + 2 * pad, True))
+        self.shape = (next_fast_len(h + 2 * pad, True), next_fast_len(w + 2 * pad, True))
         self.origin = np.array([[1.0, 0, pad], [0, 1.0, pad]])
         canvas = np.zeros(self.shape + (ref_desc.shape[2],), np.float32)
         ok = np.zeros(self.shape, bool)
         canvas[pad:pad + h, pad:pad + w] = ref_desc
         ok[pad:pad + h, pad:pad + w] = r_valid
         d = self._centre(canvas, ok)
-        self.fr = sfft.rfft2(d, axes=(0, 1))
-        self.fe = sfft.rfft2((d ** 2).sum(axis=2))
-        self.fm = sfft.rfft2(ok.astype(np.float32))
+        self.fr = rfft2(d, axes=(0, 1))
+        self.fe = rfft2((d ** 2).sum(axis=2))
+        self.fm = rfft2(ok.astype(np.float32))
         self.area = max(float(r_valid.sum()), 1.0)
         self.min_count = max(min_overlap * self.area, 1.0)
         self.idx = np.r_[0:pad + 1, -pad:0]
@@ -133,12 +133,12 @@ class ShiftCorrelator:
         if ok.sum() < self.min_count:
             return None
         d = self._centre(desc, ok)
-        ft = np.conj(sfft.rfft2(d, axes=(0, 1)))
-        fmt = np.conj(sfft.rfft2(ok.astype(np.float32)))
-        num = sfft.irfft2((self.fr * ft).sum(axis=2), self.shape)
-        er = sfft.irfft2(self.fe * fmt, self.shape)
-        et = sfft.irfft2(self.fm * np.conj(sfft.rfft2((d ** 2).sum(axis=2))), self.shape)
-        count = sfft.irfft2(self.fm * fmt, self.shape)
+        ft = np.conj(rfft2(d, axes=(0, 1)))
+        fmt = np.conj(rfft2(ok.astype(np.float32)))
+        num = irfft2((self.fr * ft).sum(axis=2), self.shape)
+        er = irfft2(self.fe * fmt, self.shape)
+        et = irfft2(self.fm * np.conj(rfft2((d ** 2).sum(axis=2))), self.shape)
+        count = irfft2(self.fm * fmt, self.shape)
         ix = np.ix_(self.idx, self.idx)
         num, er, et, count = num[ix], er[ix], et[ix], count[ix]
         ncc = num / np.sqrt(np.maximum(er * et, 1e-12))
