@@ -14,6 +14,7 @@ Arrays are indexed as numpy's and scipy's FFTs index them; no coordinates.
 """
 from __future__ import annotations
 
+import cv2
 import numpy as np
 
 SINGLE_PRECISION = int(np.__version__.split(".")[0]) >= 2
@@ -28,19 +29,10 @@ else:
     fft2, ifft2 = partial(_scipy.fft2, workers=-1), partial(_scipy.ifft2, workers=-1)
     rfft2, irfft2 = _scipy.rfft2, _scipy.irfft2
 
-__all__ = ["SINGLE_PRECISION", "fft2", "ifft2", "irfft2", "next_fast_len", "rfft2"]
+__all__ = ["SINGLE_PRECISION", "fast_length", "fft2", "ifft2", "irfft2", "rfft2"]
 
 
-def next_fast_len(n: int, real: bool = False) -> int:
-    """The smallest length >= ``n`` whose prime factors are all at most 5 (``real``) or 11, as
-    ``scipy.fft.next_fast_len``: the lengths where FFTs are fastest."""
-    primes = (2, 3, 5) if real else (2, 3, 5, 7, 11)
-    m = max(int(n), 1)
-    while True:
-        rest = m
-        for p in primes:
-            while rest % p == 0:
-                rest //= p
-        if rest == 1:
-            return m
-        m += 1
+def fast_length(n: int) -> int:
+    """The smallest length >= ``n`` with no prime factor above 5, where FFTs are fastest (scipy's
+    ``next_fast_len`` for real transforms gives the same)."""
+    return cv2.getOptimalDFTSize(n)

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..coords import matrix_corner_to_opencv
 from ..estimation.affine2d import compose, invert, resize
-from ..fourier import irfft2, next_fast_len, rfft2
+from ..fourier import fast_length, irfft2, rfft2
 
 
 def _erode(valid: np.ndarray, r: int) -> np.ndarray:
@@ -107,7 +107,7 @@ class ShiftCorrelator:
     def __init__(self, ref_desc: np.ndarray, r_valid: np.ndarray, pad: int, min_overlap: float = 0.25):
         h, w = r_valid.shape
         self.pad = pad
-        self.shape = (next_fast_len(h + 2 * pad, True), next_fast_len(w + 2 * pad, True))
+        self.shape = (fast_length(h + 2 * pad), fast_length(w + 2 * pad))
         self.origin = np.array([[1.0, 0, pad], [0, 1.0, pad]])
         canvas = np.zeros(self.shape + (ref_desc.shape[2],), np.float32)
         ok = np.zeros(self.shape, bool)

@@ -11,8 +11,9 @@ from __future__ import annotations
 import copy
 from functools import lru_cache
 
-import cv2
 import numpy as np
+
+from ..fourier import fast_length  # noqa: F401 (the site canvases' length, used by verify)
 
 
 def turned(stack: np.ndarray):
@@ -81,11 +82,6 @@ def _ramps(n: int, half: int, side: int):
     ky, kx = np.arange(n)[:, None], np.arange(half)[None, :]
     ramp = -2j * np.pi * (side - 1) / n
     return tuple(_frozen(np.exp(ramp * k)) for k in (ky + kx, kx + 0 * ky, ky + 0 * kx))
-
-
-def fast_length(n: int) -> int:
-    """The smallest length >= ``n`` with no prime factor above 5, where FFTs are fastest."""
-    return cv2.getOptimalDFTSize(n)
 
 
 def window_sums(a: np.ndarray, side: int) -> np.ndarray:
