@@ -18,17 +18,48 @@ def _run(cmd, **kw):
     return proc
 
 
+def declared_distributions() -> dict:
+    """The installed distributions hamta's declared dependencies need (transitively, extras left out)."""
+    from importlib import metadata
+
+    from packaging.requirements import Requirement
+    from packaging.utils import canonicalize_name
+
+    found, todo = {}, list(metadata.requires("hamta"))
+    while todo:
+        req = Requirement(todo.pop())
+        if req.marker is not None and not req.marker.evaluate({"extra": ""}):
+            continue
+        if canonicalize_name(req.name) not in found:
+            dist = metadata.distribution(req.name)
+            found[canonicalize_name(req.name)] = dist
+            todo += dist.requires or []
+    return found
+
+
 @pytest.fixture(scope="module")
 def installed(tmp_path_factory):
-    """A fresh virtual environment with the wheel built from this repository (not editable)."""
+    """A fresh virtual environment with the wheel built from this repository (not editable) and, of this
+    environment's packages, only those the wheel's declared dependencies need: links to their files in a
+    folder the new environment reads (installing them again took 45 s of the suite)."""
     root = tmp_path_factory.mktemp("wheel")
     _run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", root / "dist",
           REPO])
     wheel = next((root / "dist").glob("hamta-*.whl"))
     venv = root / "venv"
-    _run([sys.executable, "-m", "venv", venv])
+    _run([sys.executable, "-m", "venv", "--without-pip", venv])
+    deps = root / "deps"
+    deps.mkdir()
+    for dist in declared_distributions().values():
+        for top in {f.parts[0] for f in dist.files}:
+            source = pathlib.Path(dist.locate_file(top))
+            if source.exists() and not (deps / top).exists() and source.parent.name == "site-packages":
+                (deps / top).symlink_to(source)
+    site = next((venv / "lib").glob("python*/site-packages"))
+    (site / "declared-dependencies.pth").write_text(f"{deps}\n")
     env = dict(os.environ, PIP_DISABLE_PIP_VERSION_CHECK="1")
-    _run([venv / "bin" / "python", "-m", "pip", "install", "-q", wheel], env=env)
+    _run([sys.executable, "-m", "pip", "--python", venv / "bin" / "python", "install", "-q", "--no-deps", wheel],
+         env=env)
     return wheel, venv
 
 
