@@ -94,7 +94,7 @@ def _orientations(image: np.ndarray, p: PhaseCongruencyParams):
     energy), both (H, W) float32."""
     img = image.astype(np.float32)
     rows, cols = img.shape
-    spectrum = fft2(img).astype(np.complex64, copy=False)
+    spectrum = fft2(img)
     eps = np.float32(p.eps)
     for filters in _filters(rows, cols, p):
         eo = ifft2(spectrum * filters)  # every scale at once: same values, faster
