@@ -46,7 +46,7 @@ def test_outputs_writes_only_what_is_asked_for(tmp_path, demo_pair, capsys, monk
 def test_map_points_uses_the_stored_model(tmp_path, demo_pair, capsys, model):
     out = tmp_path / model
     main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--model", model,
-          "--out", str(out), "--quiet"])
+          "--out", str(out), "--outputs", "report", "--quiet"])
     capsys.readouterr()
     assert main(["map-points", str(out / "report.json"), "10", "20", "300.5", "400.25", "--json"]) == 0
     rows = json.loads(capsys.readouterr().out)
