@@ -1,6 +1,7 @@
 """``auto``: the fast path decides first, escalation when it does not verify, every attempt reported."""
 import dataclasses
 
+import numpy as np
 import pytest
 
 from hamta.bench.families import CaseSpec, build_case
@@ -26,6 +27,9 @@ def test_escalates_to_a_method_whose_result_verifies(tmp_path, shared, monkeypat
     result = register(case.target, case.reference)
     attempts = result.auto.attempts
     assert result.method == "cfog" and result.verified and attempts[-1].accepted
+    # cfog's own registration of the inverted proxy (test_cfog registers the folded one)
+    assert np.sqrt(np.mean(case.errors(result.model) ** 2)) < 1.0
+    assert result.stats.n_gcps >= 50 and "coarse" in result.diagnostics
     assert [a.method for a in attempts] == ["phasecorr", "sift", "cfog"]
     assert all(a.outcome != "verified" for a in attempts[:2]) and all(a.time_s >= 0 for a in attempts)
 
