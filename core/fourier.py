@@ -22,15 +22,6 @@ import numpy as np
 
 SINGLE_PRECISION = int(np.__version__.split(".")[0]) >= 2
 
-if SINGLE_PRECISION:
-    from numpy.fft import irfft2, rfft2
-else:
-    from functools import partial
-
-    from scipy import fft as _scipy
-
-    rfft2, irfft2 = _scipy.rfft2, _scipy.irfft2
-
 __all__ = ["SINGLE_PRECISION", "fast_length", "fft2", "ifft2", "irfft2", "rfft2"]
 
 
@@ -62,6 +53,13 @@ def _pairs(a: np.ndarray) -> np.ndarray:
 
 
 if SINGLE_PRECISION:
+    from numpy.fft import irfft2, rfft2
+
     fft2, ifft2 = _opencv_fft2, _opencv_ifft2
 else:
+    from functools import partial
+
+    from scipy import fft as _scipy
+
+    rfft2, irfft2 = _scipy.rfft2, _scipy.irfft2
     fft2, ifft2 = partial(_scipy.fft2, workers=-1), partial(_scipy.ifft2, workers=-1)

@@ -51,7 +51,7 @@ def installed(tmp_path_factory):
     deps = root / "deps"
     deps.mkdir()
     for dist in declared_distributions().values():
-        for top in {f.parts[0] for f in dist.files}:
+        for top in {f.parts[0] for f in dist.files or ()}:
             source = pathlib.Path(dist.locate_file(top))
             if source.exists() and not (deps / top).exists() and source.parent.name == "site-packages":
                 (deps / top).symlink_to(source)
