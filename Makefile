@@ -19,7 +19,7 @@ demo: $(VENV)/.ok
 	$(VENV)/bin/hamta demo --out demo-output
 
 # The two halves run side by side (each keeps about one of two cores busy); each one's output is
-# printed whole when it ends.
+# printed whole when it ends. HAMTA_TEST_HALF shares the cases of tests marked 'split' between them.
 test: $(VENV)/.learned $(QVENV)/.ok
 	$(MAKE) --no-print-directory lint
 	$(MAKE) --no-print-directory -j2 --output-sync=target test-wheels test-debian
@@ -30,13 +30,13 @@ lint: $(VENV)/.ok
 # Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL) and the
 # 'learned' extra.
 test-wheels: $(VENV)/.learned
-	$(VENV)/bin/python -P -m pytest tests/core -q -rs --durations=15
+	HAMTA_TEST_HALF=0 $(VENV)/bin/python -P -m pytest tests/core -q -rs --durations=15
 
 # Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...);
 # the wheel build, the end-to-end benchmark (make bench runs there), the tests that interrupt, kill or race
 # whole processes and the hostile-server matrix (stack-independent) run on the PyPI-wheels half only.
 test-debian: $(QVENV)/.ok
-	$(QVENV)/bin/python -P -m pytest tests -q -rs --durations=15 -m "not packaging and not bench and not processes and not hostile"
+	HAMTA_TEST_HALF=1 $(QVENV)/bin/python -P -m pytest tests -q -rs --durations=15 -m "not packaging and not bench and not processes and not hostile"
 
 bench: $(VENV)/.ok
 	$(VENV)/bin/hamta bench

@@ -20,28 +20,31 @@ DEMO_TRUTH = {"angle_deg": 12.0, "scale": 0.8, "shift_px": [37.0, -21.0]}
 TARGET_SHAPE = (700, 760)
 
 
-def make_demo_pair(folder: str):
+def make_demo_pair(folder: str, side: int = 1000):
     """Write ``reference.tif``, ``target.tif`` and ``truth.json`` into ``folder``; return their paths.
 
     The target shows the reference rotated by 12 degrees at 12.5 m pixels (scale 0.8), shifted,
-    with a gamma change and sensor noise, and carries no georeferencing.
+    with a gamma change and sensor noise, and carries no georeferencing. ``side`` (reference px) gives a
+    smaller pair of the same make, target and shift scaled alike (the tests' quick pair).
     """
     os.makedirs(folder, exist_ok=True)
-    ref = make_landscape((1000, 1000), seed=7)
-    g = similarity_matrix(DEMO_TRUTH["angle_deg"], DEMO_TRUTH["scale"], TARGET_SHAPE, ref.shape[1:],
-                          DEMO_TRUTH["shift_px"])
-    tgt = warp_to_target(ref, g, TARGET_SHAPE)
+    k = side / 1000.0
+    shape = (round(TARGET_SHAPE[0] * k), round(TARGET_SHAPE[1] * k))
+    ref = make_landscape((side, side), seed=7)
+    g = similarity_matrix(DEMO_TRUTH["angle_deg"], DEMO_TRUTH["scale"], shape, ref.shape[1:],
+                          [v * k for v in DEMO_TRUTH["shift_px"]])
+    tgt = warp_to_target(ref, g, shape)
     rng = np.random.default_rng(11)
     tgt = 255.0 * (np.clip(tgt, 0, 255) / 255.0) ** 0.8 + rng.normal(0, 3.0, tgt.shape)
     tgt = np.clip(tgt, 0, 255).astype(np.uint8)
     paths = {k: os.path.join(folder, v) for k, v in
              (("reference", "reference.tif"), ("target", "target.tif"), ("truth", "truth.json"))}
-    with rasterio.open(paths["reference"], "w", driver="GTiff", width=1000, height=1000, count=3, dtype="uint8",
+    with rasterio.open(paths["reference"], "w", driver="GTiff", width=side, height=side, count=3, dtype="uint8",
                        crs=DEMO_CRS, transform=DEMO_TRANSFORM, photometric="RGB", compress="deflate") as dst:
         dst.write(ref)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", NotGeoreferencedWarning)
-        with rasterio.open(paths["target"], "w", driver="GTiff", width=TARGET_SHAPE[1], height=TARGET_SHAPE[0],
+        with rasterio.open(paths["target"], "w", driver="GTiff", width=shape[1], height=shape[0],
                            count=3, dtype="uint8", photometric="RGB", compress="deflate") as dst:
             dst.write(tgt)
     with open(paths["truth"], "w") as f:

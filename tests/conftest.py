@@ -26,6 +26,30 @@ def pytest_configure(config):
         raise pytest.UsageError(f"{MISSING_DATA}; HAMTA_REQUIRE_DATA=1 forbids skipping the tests that need it")
 
 
+def pytest_collection_modifyitems(config, items):
+    """``make test`` runs two halves, one per stack (HAMTA_TEST_HALF 0 and 1). A test marked ``split`` has
+    cases that share one code path: each half runs every other case, so both stacks run the test and each
+    case runs once. The marker's arguments name the parameters that are shared out (all by default): the cases
+    that differ only in those alternate, so every value of the others runs on both stacks."""
+    half = os.environ.get("HAMTA_TEST_HALF")
+    if half not in ("0", "1"):
+        return
+    seen, kept, dropped = {}, [], []
+    for item in items:
+        mark = item.get_closest_marker("split")
+        if mark is None or not hasattr(item, "callspec"):
+            kept.append(item)
+            continue
+        shared = set(mark.args) or set(item.callspec.params)
+        key = (item.nodeid.split("[")[0],) + tuple(sorted((k, repr(v)) for k, v in item.callspec.params.items()
+                                                         if k not in shared))
+        seen[key] = seen.get(key, -1) + 1
+        (kept if seen[key] % 2 == int(half) else dropped).append(item)
+    if dropped:
+        config.hook.pytest_deselected(items=dropped)
+        items[:] = kept
+
+
 def pytest_terminal_summary(terminalreporter):
     if not (SHARED / "data").is_dir():
         skipped = len(terminalreporter.stats.get("skipped", []))
@@ -75,6 +99,15 @@ def demo_pair(tmp_path_factory):
     from hamta.bench.sample import make_demo_pair
 
     return make_demo_pair(str(tmp_path_factory.mktemp("demo") / "sample"))
+
+
+@pytest.fixture(scope="session")
+def small_pair(tmp_path_factory):
+    """The demo pair's make at 400 px (target 280 x 304 px): for tests of what happens around a registration
+    (batches, publishing, exit codes), where the pair's size only costs time."""
+    from hamta.bench.sample import make_demo_pair
+
+    return make_demo_pair(str(tmp_path_factory.mktemp("small") / "sample"), side=400)
 
 
 def grey(bands):

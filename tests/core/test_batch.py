@@ -15,31 +15,31 @@ from hamta.core.errors import InputError
 SIFT = BatchSettings(method="sift")
 
 
-def _targets(tmp_path, demo_pair, n):
+def _targets(tmp_path, small_pair, n):
     folder = tmp_path / "targets"
     folder.mkdir()
     for i in range(n):
-        shutil.copy(demo_pair["target"], folder / f"t{i:02d}.tif")
+        shutil.copy(small_pair["target"], folder / f"t{i:02d}.tif")
     return folder
 
 
-def test_job_lists_from_csv_geopackage_and_a_pattern(tmp_path, demo_pair):
-    folder = _targets(tmp_path, demo_pair, 2)
+def test_job_lists_from_csv_geopackage_and_a_pattern(tmp_path, small_pair):
+    folder = _targets(tmp_path, small_pair, 2)
     (tmp_path / "jobs.csv").write_text("Target,reference,method,output\n"
-                                       f"targets/t00.tif,{demo_pair['reference']},sift,\n"
-                                       f"targets/t01.tif,{demo_pair['reference']},,custom\n")
+                                       f"targets/t00.tif,{small_pair['reference']},sift,\n"
+                                       f"targets/t01.tif,{small_pair['reference']},,custom\n")
     jobs = read_jobs(str(tmp_path / "jobs.csv"), str(tmp_path / "out"))
     assert [j.target for j in jobs] == [str(folder / "t00.tif"), str(folder / "t01.tif")]
     assert jobs[0].method == "sift" and jobs[1].method is None
     assert jobs[0].out == str(tmp_path / "out" / "t00") and jobs[1].out == str(tmp_path / "out" / "custom")
-    pattern = read_jobs(str(folder / "*.tif"), str(tmp_path / "o"), demo_pair["reference"])
+    pattern = read_jobs(str(folder / "*.tif"), str(tmp_path / "o"), small_pair["reference"])
     assert [j.name for j in pattern] == ["t00", "t01"] and len({j.key for j in pattern}) == 2
     with sqlite3.connect(tmp_path / "jobs.gpkg") as con:
         con.execute("CREATE TABLE gpkg_contents (table_name TEXT, data_type TEXT)")
         con.execute("INSERT INTO gpkg_contents VALUES ('jobs', 'attributes')")
         con.execute("CREATE TABLE jobs (fid INTEGER PRIMARY KEY, target TEXT, reference TEXT)")
         con.execute("INSERT INTO jobs (target, reference) VALUES (?, ?)", (str(folder / "t01.tif"),
-                                                                             demo_pair["reference"]))
+                                                                             small_pair["reference"]))
     assert [j.name for j in read_jobs(str(tmp_path / "jobs.gpkg"), str(tmp_path / "o"))] == ["t01"]
     (tmp_path / "bad.csv").write_text("image\nx.tif\n")
     with pytest.raises(InputError, match="no 'target' column"):
@@ -48,10 +48,10 @@ def test_job_lists_from_csv_geopackage_and_a_pattern(tmp_path, demo_pair):
         read_jobs(str(folder), str(tmp_path / "o"))
 
 
-def test_a_local_cluster_registers_records_failures_and_resumes(tmp_path, demo_pair):
-    folder = _targets(tmp_path, demo_pair, 2)
+def test_a_local_cluster_registers_records_failures_and_resumes(tmp_path, small_pair):
+    folder = _targets(tmp_path, small_pair, 2)
     (folder / "broken.tif").write_text("not a raster")
-    jobs = read_jobs(str(folder), str(tmp_path / "out"), demo_pair["reference"])
+    jobs = read_jobs(str(folder), str(tmp_path / "out"), small_pair["reference"])
     result = run_batch(jobs, SIFT, workers=2)
     assert [r["status"] for r in result.records] == ["failed", "verified", "verified"]
     assert "broken.tif" in result.records[0]["message"] and result.workers == 2
@@ -79,10 +79,10 @@ def cluster(tmp_path):
 
 
 @pytest.mark.processes
-def test_a_worker_killed_mid_batch_loses_no_pair_and_corrupts_no_output(tmp_path, demo_pair, cluster):
+def test_a_worker_killed_mid_batch_loses_no_pair_and_corrupts_no_output(tmp_path, small_pair, cluster):
     address, workers = cluster
-    folder = _targets(tmp_path, demo_pair, 5)
-    jobs = read_jobs(str(folder), str(tmp_path / "out"), demo_pair["reference"])
+    folder = _targets(tmp_path, small_pair, 5)
+    jobs = read_jobs(str(folder), str(tmp_path / "out"), small_pair["reference"])
     seen = []
 
     def kill_after_two(fraction, message):
@@ -101,7 +101,7 @@ def test_a_worker_killed_mid_batch_loses_no_pair_and_corrupts_no_output(tmp_path
         assert not [n for n in os.listdir(r["out"]) if n.startswith(".hamta-staging-")]
 
 
-def test_a_big_scene_measures_its_local_windows_on_the_cluster(tmp_path, demo_pair, cluster):
+def test_a_big_scene_measures_its_local_windows_on_the_cluster(tmp_path, small_pair, cluster):
     import psutil
 
     from hamta.cli.main import main
@@ -110,7 +110,7 @@ def test_a_big_scene_measures_its_local_windows_on_the_cluster(tmp_path, demo_pa
     busy = lambda: sum(psutil.Process(w.pid).cpu_times().user for w in workers)  # noqa: E731
     before = busy()
     out = tmp_path / "out"
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out", str(out),
                "--method", "sift", "--local", "--scheduler", address, "--quiet"])
     report = json.loads((out / "report.json").read_text())
     assert rc == 0 and report["model"]["type"] == "tps" and report["local"]["n_kept"] >= 40
@@ -260,47 +260,47 @@ def test_a_local_cluster_of_no_workers_is_refused(workers):
         run_batch([_job("t", "/nowhere")], SIFT, workers=workers)
 
 
-def _job_list(tmp_path, demo_pair, *outputs):
+def _job_list(tmp_path, small_pair, *outputs):
     path = tmp_path / "jobs.csv"
-    path.write_text("target,reference,output\n" + "".join(f"{demo_pair['target']},{demo_pair['reference']},{o}\n"
+    path.write_text("target,reference,output\n" + "".join(f"{small_pair['target']},{small_pair['reference']},{o}\n"
                                                           for o in outputs))
     return str(path)
 
 
 @pytest.mark.parametrize("output", ["../../escape", "/tmp/outside", "a/../../escape", ".", "a/.."])
-def test_a_job_list_output_outside_out_is_refused(output, tmp_path, demo_pair):
-    jobs = _job_list(tmp_path, demo_pair, "fine", output)
+def test_a_job_list_output_outside_out_is_refused(output, tmp_path, small_pair):
+    jobs = _job_list(tmp_path, small_pair, "fine", output)
     with pytest.raises(InputError, match=rf"Row 2 of the job list '{jobs}': the output '{output}' is not a folder "
                                          rf"inside the output folder '{tmp_path / 'out'}'"):
         read_jobs(jobs, str(tmp_path / "out"))
 
 
-def test_two_rows_with_one_output_are_refused_and_named_names_avoid_outputs(tmp_path, demo_pair):
-    jobs = _job_list(tmp_path, demo_pair, "a", "b", "x/../a/")
+def test_two_rows_with_one_output_are_refused_and_named_names_avoid_outputs(tmp_path, small_pair):
+    jobs = _job_list(tmp_path, small_pair, "a", "b", "x/../a/")
     with pytest.raises(InputError, match=rf"Rows 1 and 3 of the job list '{jobs}' have the same output folder "
                                          rf"'{tmp_path / 'out' / 'a'}'"):
         read_jobs(jobs, str(tmp_path / "out"))
-    jobs = _job_list(tmp_path, demo_pair, "", "target", "deep/inside")
+    jobs = _job_list(tmp_path, small_pair, "", "target", "deep/inside")
     assert [j.out for j in read_jobs(jobs, str(tmp_path / "out"))] == [
         str(tmp_path / "out" / "target-2"), str(tmp_path / "out" / "target"), str(tmp_path / "out" / "deep/inside")]
 
 
-def test_a_csv_row_with_more_fields_than_the_header_is_named(tmp_path, demo_pair):
+def test_a_csv_row_with_more_fields_than_the_header_is_named(tmp_path, small_pair):
     jobs = tmp_path / "jobs.csv"
-    jobs.write_text(f"target,reference\n{demo_pair['target']},{demo_pair['reference']}\n"
-                    f"{demo_pair['target']},{demo_pair['reference']},sift,oops\n")
+    jobs.write_text(f"target,reference\n{small_pair['target']},{small_pair['reference']}\n"
+                    f"{small_pair['target']},{small_pair['reference']},sift,oops\n")
     with pytest.raises(InputError, match=rf"Row 2 \(line 3\) of the job list '{jobs}' has 4 fields, more than the 2 "
                                          "columns of its header"):
         read_jobs(str(jobs), str(tmp_path / "out"))
 
 
-def test_only_a_verified_pair_carries_an_error_bound(tmp_path, demo_pair, monkeypatch):
+def test_only_a_verified_pair_carries_an_error_bound(tmp_path, small_pair, monkeypatch):
     import importlib
 
     from hamta.core.batch.jobs import jobs_for_targets
     from hamta.core.batch.task import failed_record, from_report, register_job
 
-    job = jobs_for_targets([demo_pair["target"]], demo_pair["reference"], str(tmp_path / "out"))[0]
+    job = jobs_for_targets([small_pair["target"]], small_pair["reference"], str(tmp_path / "out"))[0]
     verified = register_job(job, SIFT)
     assert verified["status"] == "verified" and 0 < verified["error_bound_px"] < 3
     path = os.path.join(job.out, "report.json")
@@ -318,17 +318,17 @@ def test_only_a_verified_pair_carries_an_error_bound(tmp_path, demo_pair, monkey
         raise ValueError()
 
     monkeypatch.setattr(importlib.import_module("hamta.core.runner"), "run", silent_failure)
-    other = jobs_for_targets([demo_pair["target"]], demo_pair["reference"], str(tmp_path / "other"))[0]
+    other = jobs_for_targets([small_pair["target"]], small_pair["reference"], str(tmp_path / "other"))[0]
     record = register_job(other, SIFT)
     assert (record["status"], record["message"], record["error_bound_px"]) == ("failed", "ValueError", None)
 
 
-def test_a_bug_in_a_method_fails_its_pair_naming_the_method(tmp_path, demo_pair, raising_method):
+def test_a_bug_in_a_method_fails_its_pair_naming_the_method(tmp_path, small_pair, raising_method):
     from hamta.core.batch.jobs import jobs_for_targets
     from hamta.core.batch.task import register_job
 
     name = raising_method(ZeroDivisionError("division by zero"))
-    job = jobs_for_targets([demo_pair["target"]], demo_pair["reference"], str(tmp_path / "out"))[0]
+    job = jobs_for_targets([small_pair["target"]], small_pair["reference"], str(tmp_path / "out"))[0]
     record = register_job(job, BatchSettings(method=name))
     assert record["status"] == "failed"
     assert record["message"] == f"internal error in method '{name}' (ZeroDivisionError: division by zero)"

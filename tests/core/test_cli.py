@@ -12,9 +12,9 @@ from hamta.cli.main import main
 from hamta.core.estimation.models import model_from_dict
 
 
-def test_register_writes_every_output_and_prints_them(tmp_path, demo_pair, capsys):
+def test_register_writes_every_output_and_prints_them(tmp_path, small_pair, capsys):
     out = tmp_path / "out"
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--method", "sift",
                "--model", "affine", "--out", str(out), "--vrt", "--quiet"])
     assert rc == 0
     printed = capsys.readouterr().out
@@ -24,7 +24,7 @@ def test_register_writes_every_output_and_prints_them(tmp_path, demo_pair, capsy
     assert report["method"] == "sift" and report["outputs"]["raster"].endswith("registered.tif")
 
 
-def test_outputs_writes_only_what_is_asked_for(tmp_path, demo_pair, capsys, monkeypatch):
+def test_outputs_writes_only_what_is_asked_for(tmp_path, small_pair, capsys, monkeypatch):
     import hamta.core.outputs as outputs
 
     def not_asked(*args, **kwargs):
@@ -33,19 +33,19 @@ def test_outputs_writes_only_what_is_asked_for(tmp_path, demo_pair, capsys, monk
     monkeypatch.setattr(outputs, "write_html_report", not_asked)
     monkeypatch.setattr(outputs, "write_gcp_layer", not_asked)
     out = tmp_path / "out"
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--method", "sift",
                "--out", str(out), "--outputs", "raster,report", "--quiet"])
     assert rc == 0
     assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["registered.tif", "report.json"]
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out", str(out),
                "--outputs", "raster,html5", "--quiet"])
     assert rc == 2 and "unknown output(s) html5" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("model", ["affine", "tps"])
-def test_map_points_uses_the_stored_model(tmp_path, demo_pair, capsys, model):
+def test_map_points_uses_the_stored_model(tmp_path, small_pair, capsys, model):
     out = tmp_path / model
-    main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--model", model,
+    main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--model", model,
           "--out", str(out), "--outputs", "report", "--quiet"])
     capsys.readouterr()
     assert main(["map-points", str(out / "report.json"), "10", "20", "300.5", "400.25", "--json"]) == 0
@@ -58,12 +58,12 @@ def test_map_points_uses_the_stored_model(tmp_path, demo_pair, capsys, model):
     assert rows[1]["map"] == pytest.approx([gt[0] + gt[1] * x + gt[2] * y, gt[3] + gt[4] * x + gt[5] * y])
 
 
-def test_errors_exit_nonzero_with_a_message(tmp_path, demo_pair, capsys):
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", str(tmp_path / "nope.tif"),
+def test_errors_exit_nonzero_with_a_message(tmp_path, small_pair, capsys):
+    rc = main(["register", "--reference", small_pair["reference"], "--target", str(tmp_path / "nope.tif"),
                "--out", str(tmp_path / "o"), "--quiet"])
     assert rc == 1 and "target raster" in capsys.readouterr().err
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--model", "wobbly",
-               "--out", str(tmp_path / "o"), "--quiet"])
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--model",
+               "wobbly", "--out", str(tmp_path / "o"), "--quiet"])
     assert rc == 2 and "unknown model" in capsys.readouterr().err
 
 
@@ -92,10 +92,10 @@ def test_version(capsys):
     assert capsys.readouterr().out.strip() == f"hamta {__version__}"
 
 
-def test_console_script_is_installed_and_shows_progress(tmp_path, demo_pair):
+def test_console_script_is_installed_and_shows_progress(tmp_path, small_pair):
     exe = shutil.which("hamta", path=os.path.dirname(sys.executable))
     assert exe, "the 'hamta' console script is not installed next to this interpreter"
-    proc = subprocess.run([exe, "register", "--reference", demo_pair["reference"], "--target", demo_pair["target"],
+    proc = subprocess.run([exe, "register", "--reference", small_pair["reference"], "--target", small_pair["target"],
                            "--out", str(tmp_path / "o")], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stderr
     assert "100%" in proc.stderr and "registered.tif" in proc.stdout
@@ -110,9 +110,9 @@ def test_demo_reports_the_true_error(tmp_path, capsys):
     assert (tmp_path / "demo" / "result" / "registered.tif").is_file()
 
 
-def test_an_unverified_result_exits_3_and_writes_only_its_report(tmp_path, demo_pair, capsys):
+def test_an_unverified_result_exits_3_and_writes_only_its_report(tmp_path, small_pair, capsys):
     out = tmp_path / "strict"
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--method", "sift",
                "--tolerance", "0.01", "--out", str(out), "--quiet"])
     captured = capsys.readouterr()
     assert rc == 3 and "NOT VERIFIED" in captured.out and "No georeferenced output" in captured.err
@@ -126,11 +126,11 @@ def test_an_unverified_result_exits_3_and_writes_only_its_report(tmp_path, demo_
     assert report["quality"]["verdict"] != "verified" and report["quality"]["reasons"]
 
 
-def test_accept_unverified_writes_the_outputs_with_the_verdict_in_them(tmp_path, demo_pair, capsys):
+def test_accept_unverified_writes_the_outputs_with_the_verdict_in_them(tmp_path, small_pair, capsys):
     import rasterio
 
     out = tmp_path / "kept"
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--method", "sift",
                "--tolerance", "0.01", "--accept-unverified", "--vrt", "--out", str(out), "--quiet"])
     assert rc == 3
     err = capsys.readouterr().err
@@ -142,27 +142,27 @@ def test_accept_unverified_writes_the_outputs_with_the_verdict_in_them(tmp_path,
     assert "NOT VERIFIED" in (out / "gcps.gpkg").read_bytes().decode("latin-1")
 
 
-def test_auto_is_the_default_and_lists_what_it_tried(tmp_path, demo_pair, capsys):
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out",
+def test_auto_is_the_default_and_lists_what_it_tried(tmp_path, small_pair, capsys):
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out",
                str(tmp_path / "a"), "--quiet"])
     printed = capsys.readouterr().out
     assert rc == 0 and "* tried sift: verified" in printed and "result: verified" in printed
 
 
-def test_a_reference_without_georeferencing_needs_pixel_mode(tmp_path, demo_pair, capsys):
+def test_a_reference_without_georeferencing_needs_pixel_mode(tmp_path, small_pair, capsys):
     import cv2
     import rasterio
 
-    with rasterio.open(demo_pair["reference"]) as ds:
+    with rasterio.open(small_pair["reference"]) as ds:
         plain = str(tmp_path / "plain.png")
         cv2.imwrite(plain, ds.read().transpose(1, 2, 0)[:, :, ::-1])
     out = tmp_path / "o"
-    rc = main(["register", "--reference", plain, "--target", demo_pair["target"], "--method", "sift", "--out", str(out),
-               "--quiet"])
+    rc = main(["register", "--reference", plain, "--target", small_pair["target"], "--method", "sift", "--out",
+               str(out), "--quiet"])
     err = capsys.readouterr().err
     assert rc == 1 and "plain.png' has no georeferencing" in err and "--pixel-mode" in err and not out.exists()
-    rc = main(["register", "--reference", plain, "--target", demo_pair["target"], "--method", "sift", "--out", str(out),
-               "--quiet", "--pixel-mode"])
+    rc = main(["register", "--reference", plain, "--target", small_pair["target"], "--method", "sift", "--out",
+               str(out), "--quiet", "--pixel-mode"])
     printed = capsys.readouterr().out
     assert rc == 0 and "pixel-to-pixel registration" in printed
     with rasterio.open(out / "registered.tif") as ds:
@@ -172,8 +172,8 @@ def test_a_reference_without_georeferencing_needs_pixel_mode(tmp_path, demo_pair
     assert json.loads((out / "report.json").read_text())["reference"]["pixel_mode"] is True
 
 
-def test_the_counts_add_up(tmp_path, demo_pair, capsys):
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method", "sift",
+def test_the_counts_add_up(tmp_path, small_pair, capsys):
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--method", "sift",
                "--out", str(tmp_path / "o"), "--quiet"])
     line = next(t for t in capsys.readouterr().out.splitlines() if "GCPs" in t)
     report = json.loads((tmp_path / "o" / "report.json").read_text())["stats"]
@@ -182,12 +182,12 @@ def test_the_counts_add_up(tmp_path, demo_pair, capsys):
     assert rc == 0 and kept == report["n_gcps"] <= pool
 
 
-def test_a_bug_in_a_method_is_an_internal_error_naming_it(tmp_path, demo_pair, raising_method, monkeypatch, capsys):
+def test_a_bug_in_a_method_is_an_internal_error_naming_it(tmp_path, small_pair, raising_method, monkeypatch, capsys):
     from hamta.core import auto
     from hamta.core.errors import MethodCrashed
 
     name = raising_method(ValueError("operands could not be broadcast"))
-    args = ["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out",
+    args = ["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out",
             str(tmp_path / "o"), "--quiet"]
     assert main(args + ["--method", name]) == 1
     assert f"hamta: internal error in method '{name}' (ValueError: operands could not" in capsys.readouterr().err

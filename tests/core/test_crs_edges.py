@@ -66,15 +66,15 @@ def test_a_target_in_a_local_engineering_crs_is_searched_without_its_georeferenc
     assert "cannot be transformed to the reference's" in capsys.readouterr().err
 
 
-def test_a_reference_without_a_crs_places_the_output_by_its_geotransform(tmp_path, demo_pair, capsys):
-    with rasterio.open(demo_pair["reference"]) as src:
+def test_a_reference_without_a_crs_places_the_output_by_its_geotransform(tmp_path, small_pair, capsys):
+    with rasterio.open(small_pair["reference"]) as src:
         profile, data = src.profile, src.read()
     profile.pop("crs")
     reference = tmp_path / "no_crs.tif"
     with rasterio.open(reference, "w", **profile) as dst:
         dst.write(data)
-    common = ["register", "--target", demo_pair["target"], "--method", "sift", "--quiet"]
-    assert main(common + ["--reference", demo_pair["reference"], "--out", str(tmp_path / "with")]) == 0
+    common = ["register", "--target", small_pair["target"], "--method", "sift", "--quiet"]
+    assert main(common + ["--reference", small_pair["reference"], "--out", str(tmp_path / "with")]) == 0
     assert main(common + ["--reference", str(reference), "--out", str(tmp_path / "without")]) == 0
     assert "has a geotransform but no CRS" in capsys.readouterr().out
     with rasterio.open(tmp_path / "with" / "registered.tif") as a, rasterio.open(tmp_path / "without" /

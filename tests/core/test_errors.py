@@ -25,16 +25,16 @@ def _texture(seed=0, shape=(300, 300)):
     return cv2.GaussianBlur((rng.random(shape) * 255).astype(np.float32), (0, 0), 2).astype(np.uint8)
 
 
-def test_missing_target(tmp_path, demo_pair):
+def test_missing_target(tmp_path, small_pair):
     with pytest.raises(InputError, match=r"target raster '.*missing.tif' does not exist"):
-        register(str(tmp_path / "missing.tif"), demo_pair["reference"])
+        register(str(tmp_path / "missing.tif"), small_pair["reference"])
 
 
-def test_reference_is_not_a_raster(tmp_path, demo_pair):
+def test_reference_is_not_a_raster(tmp_path, small_pair):
     bad = tmp_path / "notes.tif"
     bad.write_text("hello")
     with pytest.raises(InputError, match=r"reference raster '.*notes.tif' is not a raster"):
-        register(demo_pair["target"], str(bad))
+        register(small_pair["target"], str(bad))
 
 
 def test_no_overlap(raster_writer):
@@ -52,16 +52,16 @@ def test_map_required_but_no_georeferencing(raster_writer):
         register(tgt, ref, options=RegisterOptions(target_georef="use", pixel_mode=True))
 
 
-def test_all_nodata(raster_writer, demo_pair):
+def test_all_nodata(raster_writer, small_pair):
     empty = raster_writer("empty.tif", np.zeros((100, 100), "uint8"), nodata=0)
     with pytest.raises(InputError, match=r"target raster '.*empty.tif' has no valid pixels"):
-        register(empty, demo_pair["reference"])
+        register(empty, small_pair["reference"])
 
 
-def test_constant_image(raster_writer, demo_pair):
+def test_constant_image(raster_writer, small_pair):
     flat = raster_writer("flat.tif", np.full((100, 100), 7, "uint8"))
     with pytest.raises(InputError, match=r"target raster '.*flat.tif' is constant .*every valid pixel is 7"):
-        register(flat, demo_pair["reference"])
+        register(flat, small_pair["reference"])
 
 
 def test_too_few_matches(raster_writer):
@@ -77,19 +77,19 @@ def test_too_few_matches(raster_writer):
         pass
 
 
-def test_unsupported_band(demo_pair):
+def test_unsupported_band(small_pair):
     with pytest.raises(InputError, match=r"Band 5 does not exist in '.*target.tif'"):
-        register(demo_pair["target"], demo_pair["reference"], options=RegisterOptions(target_band=5))
+        register(small_pair["target"], small_pair["reference"], options=RegisterOptions(target_band=5))
 
 
-def test_unknown_method_and_parameter(demo_pair):
+def test_unknown_method_and_parameter(small_pair):
     with pytest.raises(ValueError, match="unknown method 'magic'; available: .*sift"):
-        register(demo_pair["target"], demo_pair["reference"], method="magic")
+        register(small_pair["target"], small_pair["reference"], method="magic")
     with pytest.raises(ValueError, match="has no parameter.*colour"):
-        register(demo_pair["target"], demo_pair["reference"], "sift", params={"colour": "red"})
+        register(small_pair["target"], small_pair["reference"], "sift", params={"colour": "red"})
 
 
-def test_cancel_stops_the_run(demo_pair):
+def test_cancel_stops_the_run(small_pair):
     calls = []
 
     def cancel_after_two():
@@ -97,14 +97,14 @@ def test_cancel_stops_the_run(demo_pair):
         return len(calls) > 2
 
     with pytest.raises(RegistrationCanceled):
-        register(demo_pair["target"], demo_pair["reference"], is_canceled=cancel_after_two)
+        register(small_pair["target"], small_pair["reference"], is_canceled=cancel_after_two)
 
 
-def test_inputs_are_never_modified(demo_pair, tmp_path):
+def test_inputs_are_never_modified(small_pair, tmp_path):
     from hamta.core.outputs import OutputPaths, write_outputs
 
-    digest = {k: hashlib.sha256(open(demo_pair[k], "rb").read()).hexdigest() for k in ("target", "reference")}
-    result = register(demo_pair["target"], demo_pair["reference"])
+    digest = {k: hashlib.sha256(open(small_pair[k], "rb").read()).hexdigest() for k in ("target", "reference")}
+    result = register(small_pair["target"], small_pair["reference"])
     write_outputs(result, OutputPaths.in_folder(str(tmp_path / "out"), vrt=True))
-    after = {k: hashlib.sha256(open(demo_pair[k], "rb").read()).hexdigest() for k in ("target", "reference")}
+    after = {k: hashlib.sha256(open(small_pair[k], "rb").read()).hexdigest() for k in ("target", "reference")}
     assert digest == after

@@ -30,8 +30,8 @@ IMG = re.compile(r'<img[^>]*?src="data:image/(?:png|jpeg);base64,([A-Za-z0-9+/=]
 
 
 @pytest.fixture(scope="module")
-def sift_result(demo_pair):
-    return register(demo_pair["target"], demo_pair["reference"], method="sift")
+def sift_result(small_pair):
+    return register(small_pair["target"], small_pair["reference"], method="sift")
 
 
 def _write(result, tmp_path, name="report.html") -> str:
@@ -104,9 +104,9 @@ def test_auto_attempts_notes_and_escaping(sift_result, tmp_path):
 
 
 @pytest.fixture(scope="module")
-def unverified_result(demo_pair):
-    """The demo pair asked for an accuracy of 0.01 px, which the check cannot confirm."""
-    return register(demo_pair["target"], demo_pair["reference"], method="sift",
+def unverified_result(small_pair):
+    """The small pair asked for an accuracy of 0.01 px, which the check cannot confirm."""
+    return register(small_pair["target"], small_pair["reference"], method="sift",
                     options=RegisterOptions(tolerance_px=0.01))
 
 
@@ -121,8 +121,9 @@ def test_unverified_result_shows_its_reasons(unverified_result, tmp_path):
     assert "0.01 px" in text
 
 
-def test_tps_model(demo_pair, tmp_path):
-    result = register(demo_pair["target"], demo_pair["reference"], method="sift", options=RegisterOptions(model="tps"))
+def test_tps_model(small_pair, tmp_path):
+    result = register(small_pair["target"], small_pair["reference"], method="sift",
+                      options=RegisterOptions(model="tps"))
     assert result.model.kind == "tps" and not hasattr(result.model, "inverse")
     text = _write(result, tmp_path)
     assert "<b>tps</b>" in text and "values (in report.json)" in text
@@ -208,7 +209,7 @@ def test_crs_map_units_pixel_sizes_and_date(sift_result, tmp_path):
     assert ref.crs.to_epsg() == 32639 and ref.pixel_size == 10.0
     assert "WGS 84 / UTM zone 39N (EPSG:32639)" in text and "unit: metre" in text
     assert "10.00 m per px" in text  # the reference's pixel size
-    assert "not georeferenced" in text  # the demo target has no georeferencing of its own
+    assert "not georeferenced" in text  # the small pair's target has no georeferencing of its own
     # The target's pixel size as registered: the affine model's scale times the reference's.
     k = np.sqrt(abs(np.linalg.det(np.asarray(sift_result.model.matrix)[:2, :2])))
     assert f"{k * 10:.2f} m per px" in text
@@ -224,10 +225,10 @@ def test_crs_map_units_pixel_sizes_and_date(sift_result, tmp_path):
     assert before <= when <= datetime.datetime.now(datetime.timezone.utc)
 
 
-def test_outputs_are_listed_and_file_names_escaped(sift_result, tmp_path, demo_pair):
+def test_outputs_are_listed_and_file_names_escaped(sift_result, tmp_path, small_pair):
     hostile = '<img src=x onerror="alert(1)"> & co'
     target = tmp_path / f"{hostile}.tif"
-    target.symlink_to(demo_pair["target"])
+    target.symlink_to(small_pair["target"])
     result = dataclasses.replace(sift_result, target=dataclasses.replace(sift_result.target, path=str(target)))
     outputs = {"raster": str(tmp_path / f"{hostile}-registered.tif"), "report": "/out/report.json",
                "html": "/out/report.html"}

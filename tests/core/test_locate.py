@@ -14,6 +14,7 @@ from hamta.core.remote import _Reader
 from tests.conftest import grey, turned_window
 
 
+@pytest.mark.split
 @pytest.mark.parametrize("angle, scale", [(0.0, 1.0), (37.0, 2.0), (-150.0, 0.7)])
 def test_a_turned_rescaled_target_is_found_in_an_area_16_times_its_size(angle, scale):
     area = grey(make_landscape((1600, 1600), seed=3))

@@ -32,7 +32,7 @@ def test_basic_parameters_are_few_and_documented():
         assert sum(bool(f.metadata.get("basic")) for f in fields) <= 4, name
 
 
-def test_the_run_seed_reaches_the_method(demo_pair, monkeypatch):
+def test_the_run_seed_reaches_the_method(small_pair, monkeypatch):
     method, seen = get_method("sift"), []
 
     def spy(target, reference, params, monitor, seed=0):
@@ -40,7 +40,7 @@ def test_the_run_seed_reaches_the_method(demo_pair, monkeypatch):
         return method.match(target, reference, params, monitor, seed=seed)
 
     monkeypatch.setitem(registry._REGISTRY, "sift", dataclasses.replace(method, match=spy))
-    register(demo_pair["target"], demo_pair["reference"], "sift", options=RegisterOptions(seed=17))
+    register(small_pair["target"], small_pair["reference"], "sift", options=RegisterOptions(seed=17))
     assert seen == [17]
 
 
@@ -80,7 +80,7 @@ def test_every_builtin_method_is_found_in_its_module():
     assert out.strip() == "['hamta.core.methods.ndsift_pc', 'hamta.core.methods.registry']"
 
 
-def test_a_method_module_added_shows_in_every_front_end(new_method_module, capsys, demo_pair, tmp_path):
+def test_a_method_module_added_shows_in_every_front_end(new_method_module, capsys, small_pair, tmp_path):
     from hamta.bench.runner import default_methods
     from hamta.cli.main import main
 
@@ -89,7 +89,7 @@ def test_a_method_module_added_shows_in_every_front_end(new_method_module, capsy
     assert order.index(name) < order.index("orb")  # a product method, listed before the baselines
     assert main(["methods"]) == 0 and name in capsys.readouterr().out
     assert name in default_methods(quick=True)
-    code = main(["register", "--target", demo_pair["target"], "--reference", demo_pair["reference"], "--out",
+    code = main(["register", "--target", small_pair["target"], "--reference", small_pair["reference"], "--out",
                  str(tmp_path / "o"), "--method", name, "--param", "ratio=0.75", "--quiet"])
     assert code == 0 and f"method {name}" in capsys.readouterr().out
 

@@ -15,21 +15,21 @@ from hamta.cli.main import main
     (["--tolerance", "-1"], "--tolerance must be"),
     (["--max-working-pixels", "5"], "--max-working-pixels must be"),
 ])
-def test_bad_output_options_are_usage_errors_before_any_work(tmp_path, demo_pair, capsys, extra, says):
+def test_bad_output_options_are_usage_errors_before_any_work(tmp_path, small_pair, capsys, extra, says):
     out = tmp_path / "out"
-    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
+    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out", str(out),
                "--method", "sift", "--quiet", *extra])
     err = capsys.readouterr().err
     assert rc == 2 and says in err, err
     assert not out.exists() or not list(out.iterdir())
 
 
-def test_good_creation_options_are_applied(tmp_path, demo_pair):
+def test_good_creation_options_are_applied(tmp_path, small_pair):
     import rasterio
 
     out = tmp_path / "out"
-    assert main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
-                 "--method", "sift", "--quiet", "--co", "COMPRESS=LZW"]) == 0
+    assert main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out",
+                 str(out), "--method", "sift", "--quiet", "--co", "COMPRESS=LZW"]) == 0
     with rasterio.open(out / "registered.tif") as ds:
         assert ds.compression.name.lower() == "lzw"
 
@@ -38,9 +38,9 @@ def test_good_creation_options_are_applied(tmp_path, demo_pair):
     ("target,reference,model", "{t},{r},bogus", "Row 1 of the job list '{jobs}': unknown model 'bogus'"),
     ("target,reference,method", "{t},{r},nosuch", "Row 1 of the job list '{jobs}': unknown method 'nosuch'"),
 ])
-def test_a_bad_job_row_is_refused_before_any_work(tmp_path, demo_pair, capsys, header, row, says):
+def test_a_bad_job_row_is_refused_before_any_work(tmp_path, small_pair, capsys, header, row, says):
     jobs = tmp_path / "jobs.csv"
-    jobs.write_text(f"{header}\n{row.format(t=demo_pair['target'], r=demo_pair['reference'])}\n")
+    jobs.write_text(f"{header}\n{row.format(t=small_pair['target'], r=small_pair['reference'])}\n")
     rc = main(["batch", str(jobs), "--out", str(tmp_path / "out"), "--quiet"])
     err = capsys.readouterr().err
     assert rc == 1 and says.format(jobs=jobs) in err and "Traceback" not in err, err

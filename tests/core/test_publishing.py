@@ -51,8 +51,8 @@ def _state(folder):
 
 
 @pytest.fixture(scope="module")
-def results(tmp_path_factory, demo_pair):
-    """Two SIFT results of the demo pair (different seeds, so different files) with their options, each
+def results(tmp_path_factory, small_pair):
+    """Two SIFT results of the small pair (different seeds, so different files) with their options, each
     also pickled for the process that is killed."""
     from hamta.core import RegisterOptions
 
@@ -60,7 +60,7 @@ def results(tmp_path_factory, demo_pair):
     out = []
     for seed in (1, 2):
         options = RegisterOptions(seed=seed)
-        result = register(demo_pair["target"], demo_pair["reference"], "sift", options=options)
+        result = register(small_pair["target"], small_pair["reference"], "sift", options=options)
         path = folder / f"result{seed}.pkl"
         pickle.dump((result, options), open(path, "wb"))
         out.append((result, options, str(path)))
@@ -68,7 +68,7 @@ def results(tmp_path_factory, demo_pair):
 
 
 @pytest.mark.processes
-def test_sigkill_at_every_step_of_publishing_leaves_the_old_set_or_the_new_one(tmp_path, results, demo_pair):
+def test_sigkill_at_every_step_of_publishing_leaves_the_old_set_or_the_new_one(tmp_path, results, small_pair):
     (old, old_options, _), (new, new_options, new_pickle) = results
     steps = None
     k = 1
@@ -93,7 +93,7 @@ def test_sigkill_at_every_step_of_publishing_leaves_the_old_set_or_the_new_one(t
             assert set(after[0]) == set(manifest["files"]) | {MANIFEST}, f"killed at rename {k}: mixed set"
             assert all(os.path.getsize(folder / n) == s for n, s in manifest["files"].items())
             assert json.load(open(folder / "report.json"))["run_id"] == after[1]
-        job = Job(target=os.path.abspath(demo_pair["target"]), reference=os.path.abspath(demo_pair["reference"]),
+        job = Job(target=os.path.abspath(small_pair["target"]), reference=os.path.abspath(small_pair["reference"]),
                   out=str(folder))
         holds_old = after[1] == before[1]
         for options, expected in ((old_options, holds_old), (new_options, not holds_old)):
@@ -134,44 +134,44 @@ def test_a_publication_that_fails_at_its_last_step_leaves_the_old_set_and_its_ma
     assert failed and _state(folder) == before
 
 
-def _register(demo_pair, out, *extra):
-    return ["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
+def _register(small_pair, out, *extra):
+    return ["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out", str(out),
             "--method", "sift", "--quiet", *extra]
 
 
-def test_files_hamta_did_not_write_are_never_replaced_or_removed_without_overwrite(tmp_path, demo_pair, capsys):
+def test_files_hamta_did_not_write_are_never_replaced_or_removed_without_overwrite(tmp_path, small_pair, capsys):
     out = tmp_path / "out"
     out.mkdir()
     (out / "gcps.vrt").write_text("mine")
     (out / "report.json").write_text("mine too")
-    assert main(_register(demo_pair, out)) == 1
+    assert main(_register(small_pair, out)) == 1
     err = capsys.readouterr().err
     assert "holds report.json, which Hamta did not write" in err and "(--overwrite)" in err, err
     assert sorted(os.listdir(out)) == ["gcps.vrt", "report.json"] and (out / "report.json").read_text() == "mine too"
-    assert main(_register(demo_pair, out, "--overwrite")) == 0  # replaces report.json, leaves gcps.vrt alone
+    assert main(_register(small_pair, out, "--overwrite")) == 0  # replaces report.json, leaves gcps.vrt alone
     assert (out / "gcps.vrt").read_text() == "mine" and json.load(open(out / "report.json"))["method"] == "sift"
-    assert main(_register(demo_pair, out)) == 0  # a rerun replaces its own set, still not the user's file
+    assert main(_register(small_pair, out)) == 0  # a rerun replaces its own set, still not the user's file
     assert (out / "gcps.vrt").read_text() == "mine"
-    assert main(_register(demo_pair, out, "--vrt")) == 1  # writing gcps.vrt would replace the user's
+    assert main(_register(small_pair, out, "--vrt")) == 1  # writing gcps.vrt would replace the user's
 
 
-def test_a_batch_row_into_a_folder_of_the_users_files_fails_that_row_only(tmp_path, demo_pair):
+def test_a_batch_row_into_a_folder_of_the_users_files_fails_that_row_only(tmp_path, small_pair):
     from hamta.core.batch import run_batch
 
     out = tmp_path / "pair"
     out.mkdir()
     (out / "registered.tif").write_bytes(b"mine")
-    job = Job(target=os.path.abspath(demo_pair["target"]), reference=os.path.abspath(demo_pair["reference"]),
+    job = Job(target=os.path.abspath(small_pair["target"]), reference=os.path.abspath(small_pair["reference"]),
               out=str(out))
     record = run_batch([job], BatchSettings(method="sift"), workers=1, processes=False).records[0]
     assert record["status"] == "failed" and "did not write" in record["message"]
     assert (out / "registered.tif").read_bytes() == b"mine"
 
 
-def test_batch_resume_runs_a_pair_again_when_the_request_changed(tmp_path, demo_pair):
+def test_batch_resume_runs_a_pair_again_when_the_request_changed(tmp_path, small_pair):
     from hamta.core import RegisterOptions
 
-    job = Job(target=os.path.abspath(demo_pair["target"]), reference=os.path.abspath(demo_pair["reference"]),
+    job = Job(target=os.path.abspath(small_pair["target"]), reference=os.path.abspath(small_pair["reference"]),
               out=str(tmp_path / "pair"))
     first = BatchSettings(method="sift")
     from hamta.core.batch.task import register_job
@@ -187,9 +187,9 @@ def test_batch_resume_runs_a_pair_again_when_the_request_changed(tmp_path, demo_
 
 @pytest.mark.processes
 @pytest.mark.parametrize("redirect,code", [(">&-", 0), (">/dev/full", 0), ("2>&-", 0), ("| head -c 10", 3)])
-def test_exit_codes_do_not_depend_on_the_standard_streams(tmp_path, demo_pair, redirect, code):
+def test_exit_codes_do_not_depend_on_the_standard_streams(tmp_path, small_pair, redirect, code):
     tolerance = "0.001" if code == 3 else "3"
-    cmd = " ".join([sys.executable, "-m", "hamta.cli.main", *_register(demo_pair, tmp_path / "out"), "--tolerance",
+    cmd = " ".join([sys.executable, "-m", "hamta.cli.main", *_register(small_pair, tmp_path / "out"), "--tolerance",
                     tolerance, redirect])
     proc = subprocess.run(["bash", "-o", "pipefail", "-c", cmd], capture_output=True, text=True)
     assert proc.returncode == code, proc.stderr

@@ -14,6 +14,7 @@ SIMILARITY_CASES = [  # (angle deg, scale target px per reference px, shift refe
 ]
 
 
+@pytest.mark.split
 @pytest.mark.parametrize("angle,scale,shift", SIMILARITY_CASES)
 def test_sift_recovers_rotation_scale_shift_to_half_a_pixel(tmp_path, landsat, angle, scale, shift):
     case = similarity_case(str(tmp_path), landsat, angle_deg=angle, scale=scale, shift_px=shift)

@@ -37,10 +37,10 @@ def _write(path, data, **profile):
 
 
 @pytest.fixture(scope="module")
-def pair(tmp_path_factory, demo_pair):
-    """A private copy of the demo pair (inputs hashed before and after every case)."""
+def pair(tmp_path_factory, small_pair):
+    """A private copy of the small pair (inputs hashed before and after every case)."""
     folder = tmp_path_factory.mktemp("inputs")
-    return {k: shutil.copy(demo_pair[k], folder / os.path.basename(demo_pair[k])) for k in ("target", "reference")}
+    return {k: shutil.copy(small_pair[k], folder / os.path.basename(small_pair[k])) for k in ("target", "reference")}
 
 
 def _register(pair, out, *extra, target=None, reference=None):
@@ -233,11 +233,25 @@ def test_a_vrt_mosaic_target_is_warped_from_all_its_tiles(tmp_path, pair):
     assert main(_register(pair, out_vrt, "--method", "sift", target=stack)) == 0
     assert main(_register(pair, out_tif, "--method", "sift", target=_write(tmp_path / "whole.tif", data))) == 0
     with rasterio.open(out_vrt / "registered.tif") as a, rasterio.open(out_tif / "registered.tif") as b:
-        x, y = a.read().astype(float), b.read().astype(float)
-    assert x.shape == y.shape
+        x, y = _sampled_alike(a, b)
     both = (x > 0) & (y > 0)
-    assert both.mean() > 0.3 and np.abs(x - y)[both].mean() < 2.0  # the same picture, both halves
+    assert (x > 0).mean() > 0.95 * (y > 0).mean()  # both halves
+    assert both.mean() > 0.3 and np.abs(x - y)[both].mean() < 2.0  # the same picture
     assert np.abs(x[0] - x[1])[both[0]].mean() > 1.0  # three distinct bands, not three copies of band 1
+
+
+def _sampled_alike(a, b, n=80):
+    """Both rasters' bands at the same n x n map points of their common extent (their grids differ where their
+    models do)."""
+    left, right = max(a.bounds.left, b.bounds.left), min(a.bounds.right, b.bounds.right)
+    bottom, top = max(a.bounds.bottom, b.bounds.bottom), min(a.bounds.top, b.bounds.top)
+    assert right > left and top > bottom
+    mx, my = np.meshgrid(np.linspace(left, right, n + 2)[1:-1], np.linspace(bottom, top, n + 2)[1:-1])
+    out = []
+    for ds in (a, b):
+        rows, cols = rasterio.transform.rowcol(ds.transform, mx.ravel(), my.ravel())
+        out.append(ds.read().astype(float)[:, np.asarray(rows), np.asarray(cols)])
+    return out
 
 
 def test_broken_pipe_exits_quietly():

@@ -83,6 +83,7 @@ def test_sift_descriptors_at_given_keypoints_follow_the_orientation(texture):
     assert np.median(np.linalg.norm(a - b, axis=1)) < 0.5 * np.median(np.linalg.norm(a - c, axis=1))
 
 
+@pytest.mark.split("angle", "scale")
 @pytest.mark.parametrize("method", ["rilbp", "rilbp-faithful", "cslbp", "censure-sift"])
 @pytest.mark.parametrize("angle,scale", [(45, 1.0), (137, 0.9)])
 def test_methods_register_rotated_landsat_pairs(tmp_path, landsat, method, angle, scale):

@@ -79,6 +79,7 @@ def test_selective_vote_keeps_the_dominant_angle_and_scale():
     assert keep[:30].all() and not keep[30:].any()
 
 
+@pytest.mark.split("angle", "scale")
 @pytest.mark.parametrize("method", ["sibrif", "sibrif-faithful"])
 @pytest.mark.parametrize("angle,scale", [(45, 1.0), (170, 1.1)])
 def test_sibrif_registers_rotated_landsat_pairs(tmp_path, landsat, method, angle, scale):

@@ -18,6 +18,7 @@ def area(landsat):
     return read_image(open_raster(landsat, "reference"), (1, 2, 3))
 
 
+@pytest.mark.split
 @pytest.mark.parametrize("angle, magnified", [(35.0, 2.5), (-150.0, 1.6), (100.0, 3.2)])
 def test_a_turned_rescaled_target_of_inverted_contrast_is_found_first(area, angle, magnified):
     image, valid = area

@@ -203,14 +203,14 @@ def test_unavailable_stand_ins_match_the_real_algorithms(provider):
 
 @slow
 @pytest.mark.skipif(QGIS_PROCESS is None, reason="qgis_process is not installed")
-def test_installed_zip_runs_under_qgis_process(profile, demo_pair, tmp_path):
+def test_installed_zip_runs_under_qgis_process(profile, small_pair, tmp_path):
     env = bare_env(profile, QGIS_CUSTOM_CONFIG_PATH=str(profile / "profile"))
     enable = run([QGIS_PROCESS, "plugins", "enable", "hamta"], env)
     assert enable.returncode == 0, enable.stdout + enable.stderr
     assert "* hamta" in enable.stdout
     output, report = tmp_path / "o.tif", tmp_path / "r.json"
-    proc = run([QGIS_PROCESS, "run", "hamta:registersift", "--", f"TARGET={demo_pair['target']}",
-                f"REFERENCE={demo_pair['reference']}", f"OUTPUT={output}", f"REPORT={report}"], env)
+    proc = run([QGIS_PROCESS, "run", "hamta:registersift", "--", f"TARGET={small_pair['target']}",
+                f"REFERENCE={small_pair['reference']}", f"OUTPUT={output}", f"REPORT={report}"], env)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert "Traceback" not in proc.stderr
     assert output.is_file() and output.stat().st_size > 0
@@ -249,7 +249,7 @@ def test_plugin_loads_without_opencv(profile, tmp_path):
 
 @slow
 @pytest.mark.skipif(QGIS_PROCESS is None, reason="qgis_process is not installed")
-def test_qgis_process_without_opencv_lists_the_provider_and_explains(profile, demo_pair, tmp_path):
+def test_qgis_process_without_opencv_lists_the_provider_and_explains(profile, small_pair, tmp_path):
     block = tmp_path / "block"
     block.mkdir()
     (block / "sitecustomize.py").write_text(BLOCK_CV2)
@@ -262,8 +262,8 @@ def test_qgis_process_without_opencv_lists_the_provider_and_explains(profile, de
     assert listing.returncode == 0, listing.stderr
     assert "Traceback" not in listing.stderr and "error starting plugin" not in listing.stdout + listing.stderr
     assert "hamta:registersift\tRegister raster (SIFT baseline) (unavailable: missing opencv)" in listing.stdout
-    proc = run([QGIS_PROCESS, "run", "hamta:registersift", "--", f"TARGET={demo_pair['target']}",
-                f"REFERENCE={demo_pair['reference']}", f"OUTPUT={tmp_path / 'o.tif'}"], env)
+    proc = run([QGIS_PROCESS, "run", "hamta:registersift", "--", f"TARGET={small_pair['target']}",
+                f"REFERENCE={small_pair['reference']}", f"OUTPUT={tmp_path / 'o.tif'}"], env)
     assert proc.returncode == 1 and "Traceback" not in proc.stderr
     assert "ERROR:\tHamta cannot run: QGIS's Python lacks opencv." in proc.stderr
     assert "sudo apt install python3-opencv" in proc.stderr and not (tmp_path / "o.tif").exists()

@@ -29,13 +29,13 @@ def test_provider_lists_the_algorithm_with_its_parameters(provider):
     assert "Lowe" in alg.shortHelpString()
 
 
-def test_rilbp_algorithm_runs(provider, demo_pair, tmp_path):
+def test_rilbp_algorithm_runs(provider, small_pair, tmp_path):
     import processing
 
     alg = provider.algorithm("registerrilbp")
     assert alg.displayName() == "Register satellite image (RILBP, rotation-invariant)"
     assert "P_PATCH_SMOOTHING" in [p.name() for p in alg.parameterDefinitions()]
-    res = processing.run("hamta:registerrilbp", dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"],
+    res = processing.run("hamta:registerrilbp", dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"],
                                                      OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json")))
     report = json.loads(open(res["REPORT"]).read())
     assert report["method"] == "rilbp" and res["N_GCPS"] >= 20
@@ -122,10 +122,10 @@ def test_parameter_mapping_is_pure():
     assert options.tolerance_px == 3.0 and options.ransac_threshold_px is None and output.resolution is None
 
 
-def test_processing_run_writes_outputs_that_load_as_layers(provider, demo_pair, tmp_path):
+def test_processing_run_writes_outputs_that_load_as_layers(provider, small_pair, tmp_path):
     out = {"OUTPUT": str(tmp_path / "reg.tif"), "GCP_LAYER": str(tmp_path / "gcps.gpkg"),
            "GCP_POINTS": str(tmp_path / "gcps.points"), "REPORT": str(tmp_path / "report.json")}
-    res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], MODEL=1, **out))
+    res = _run(dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"], MODEL=1, **out))
     for key, path in out.items():
         assert res[key] == path and os.path.isfile(path)
     raster = QgsRasterLayer(res["OUTPUT"], "reg")
@@ -156,36 +156,36 @@ def _drawn_by(layer, expression: str) -> int:
     return n
 
 
-def test_method_parameters_reach_the_core(provider, demo_pair, tmp_path):
-    res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], P_RATIO=0.6, P_CROSS_CHECK=0,
+def test_method_parameters_reach_the_core(provider, small_pair, tmp_path):
+    res = _run(dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"], P_RATIO=0.6, P_CROSS_CHECK=0,
                     OUTPUT=str(tmp_path / "r.tif"), REPORT=str(tmp_path / "r.json")))
     params = json.loads(open(res["REPORT"]).read())["params"]
     assert params["ratio"] == pytest.approx(0.6) and params["cross_check"] == "none"
 
 
-def test_bad_input_raises_a_processing_exception(provider, demo_pair, tmp_path, raster_writer):
+def test_bad_input_raises_a_processing_exception(provider, small_pair, tmp_path, raster_writer):
     import numpy as np
 
     flat = raster_writer("flat.tif", np.full((64, 64), 3, "uint8"))
     with pytest.raises(QgsProcessingException, match="flat.tif' is constant"):
-        _run(dict(TARGET=flat, REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
+        _run(dict(TARGET=flat, REFERENCE=small_pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
     assert not (tmp_path / "o.tif").exists()
 
 
-def test_cancel_stops_cleanly_and_writes_nothing(provider, demo_pair, tmp_path):
+def test_cancel_stops_cleanly_and_writes_nothing(provider, small_pair, tmp_path):
     feedback = QgsProcessingFeedback()
     feedback.progressChanged.connect(lambda p: feedback.cancel() if p > 20 else None)
     with pytest.raises(QgsProcessingException, match="canceled"):
-        _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "o.tif"),
+        _run(dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"], OUTPUT=str(tmp_path / "o.tif"),
                   GCP_LAYER=str(tmp_path / "g.gpkg")), feedback)
     assert list(tmp_path.iterdir()) == []
 
 
-def test_points_file_round_trips_through_the_qgis_reader(provider, demo_pair, tmp_path):
+def test_points_file_round_trips_through_the_qgis_reader(provider, small_pair, tmp_path):
     from hamta.core.outputs.points import read_points
 
     path = str(tmp_path / "g.points")
-    _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "o.tif"),
+    _run(dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"], OUTPUT=str(tmp_path / "o.tif"),
               GCP_POINTS=path))
     reader = os.path.join(os.path.dirname(__file__), "qgis_points_reader.py")
     proc = subprocess.run(["/usr/bin/python3", reader, path], capture_output=True, text=True, timeout=120)
@@ -198,23 +198,23 @@ def test_points_file_round_trips_through_the_qgis_reader(provider, demo_pair, tm
         assert (qmx, qmy, qsx, qsy) == pytest.approx((mx, my, sx, sy), abs=1e-6) and qen == en
 
 
-def test_automatic_algorithm_registers_and_reports_its_verdict(provider, demo_pair, tmp_path):
+def test_automatic_algorithm_registers_and_reports_its_verdict(provider, small_pair, tmp_path):
     import processing
 
     alg = provider.algorithm("registerauto")
     assert alg is not None and alg.displayName() == "Register raster (automatic)"
     assert not [p for p in alg.parameterDefinitions() if p.name().startswith("P_")]
-    res = processing.run("hamta:registerauto", dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"],
+    res = processing.run("hamta:registerauto", dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"],
                                                     OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json")))
     assert res["VERDICT"] == "verified" and res["METHOD"] == "sift" and os.path.isfile(res["OUTPUT"])
     report = json.loads(open(res["REPORT"]).read())
     assert report["quality"]["verdict"] == "verified" and report["auto"]["attempts"][0]["accepted"]
 
 
-def test_unverified_result_fails_clearly_unless_kept(provider, demo_pair, tmp_path):
+def test_unverified_result_fails_clearly_unless_kept(provider, small_pair, tmp_path):
     import processing
 
-    params = dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], TOLERANCE=0.01,
+    params = dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"], TOLERANCE=0.01,
                   OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json"))
     from qgis.core import QgsProcessingFeedback
 
@@ -237,8 +237,8 @@ def test_unverified_result_fails_clearly_unless_kept(provider, demo_pair, tmp_pa
     assert res["VERDICT"] in ("suspect", "failed") and os.path.isfile(res["OUTPUT"])
 
 
-def test_output_control_vrt_crs_html_and_creation_options(provider, demo_pair, tmp_path):
-    res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "out.vrt"),
+def test_output_control_vrt_crs_html_and_creation_options(provider, small_pair, tmp_path):
+    res = _run(dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"], OUTPUT=str(tmp_path / "out.vrt"),
                     OUTPUT_CRS="EPSG:4326", OUTPUT_HTML=str(tmp_path / "report.html")))
     raster = QgsRasterLayer(res["OUTPUT"], "reg")
     assert raster.isValid() and raster.crs().authid() == "EPSG:4326"
@@ -247,9 +247,9 @@ def test_output_control_vrt_crs_html_and_creation_options(provider, demo_pair, t
     del raster
     with pytest.raises(QgsProcessingException, match="COG driver says: driver COG does not support creation option "
                                                       "BLOCKXSIZE"):  # the GeoTIFF's option, not the COG's
-        _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "c.tif"),
+        _run(dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"], OUTPUT=str(tmp_path / "c.tif"),
                   FORMAT=2, CREATION_OPTIONS="COMPRESS=LZW BLOCKXSIZE=512 BLOCKYSIZE=512", FILL=2, NODATA=255))
-    res = _run(dict(TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], OUTPUT=str(tmp_path / "c.tif"),
+    res = _run(dict(TARGET=small_pair["target"], REFERENCE=small_pair["reference"], OUTPUT=str(tmp_path / "c.tif"),
                     FORMAT=2, CREATION_OPTIONS="COMPRESS=LZW BLOCKSIZE=256", FILL=2, NODATA=255))
     import rasterio
 
@@ -258,14 +258,14 @@ def test_output_control_vrt_crs_html_and_creation_options(provider, demo_pair, t
         assert ds.block_shapes[0] == (256, 256)
 
 
-def test_a_reference_without_georeferencing_needs_the_pixel_mode_box(provider, demo_pair, tmp_path):
+def test_a_reference_without_georeferencing_needs_the_pixel_mode_box(provider, small_pair, tmp_path):
     import cv2
     import rasterio
 
-    with rasterio.open(demo_pair["reference"]) as ds:
+    with rasterio.open(small_pair["reference"]) as ds:
         plain = str(tmp_path / "plain.png")
         cv2.imwrite(plain, ds.read().transpose(1, 2, 0)[:, :, ::-1])
-    params = {"TARGET": demo_pair["target"], "REFERENCE": plain, "OUTPUT": str(tmp_path / "o.tif"),
+    params = {"TARGET": small_pair["target"], "REFERENCE": plain, "OUTPUT": str(tmp_path / "o.tif"),
               "GCP_LAYER": str(tmp_path / "g.gpkg")}
     with pytest.raises(QgsProcessingException, match=r"plain\.png' has no georeferencing.*\(set 'Pixel-to-pixel"):
         _run(params)
@@ -311,7 +311,7 @@ def test_every_option_is_reachable_from_processing_with_the_same_default(provide
         assert getattr(options if hasattr(options, f.name) else output, f.name) == value, key
 
 
-def test_a_method_module_added_shows_as_an_algorithm_with_its_parameters(provider, new_method_module, demo_pair,
+def test_a_method_module_added_shows_as_an_algorithm_with_its_parameters(provider, new_method_module, small_pair,
                                                                          tmp_path):
     import processing
     from hamta.processing.batch_algorithm import batch_methods
@@ -325,7 +325,7 @@ def test_a_method_module_added_shows_as_an_algorithm_with_its_parameters(provide
         assert {"P_RATIO", "P_N_FEATURES", "TOLERANCE", "MODEL"} <= set(names)
         assert new_method_module in batch_methods()
         res = processing.run("hamta:registertestmethod", dict(
-            TARGET=demo_pair["target"], REFERENCE=demo_pair["reference"], P_RATIO=0.75,
+            TARGET=small_pair["target"], REFERENCE=small_pair["reference"], P_RATIO=0.75,
             OUTPUT=str(tmp_path / "o.tif"), REPORT=str(tmp_path / "r.json")))
         assert res["METHOD"] == new_method_module and res["VERDICT"] == "verified"
     finally:

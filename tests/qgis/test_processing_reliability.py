@@ -26,10 +26,11 @@ def _digest(*paths):
 
 
 @pytest.fixture
-def pair(demo_pair, tmp_path):
+def pair(small_pair, tmp_path):
     folder = tmp_path / "inputs"
     folder.mkdir()
-    return {k: str(shutil.copy(demo_pair[k], folder / os.path.basename(demo_pair[k]))) for k in ("target", "reference")}
+    return {k: str(shutil.copy(small_pair[k], folder / os.path.basename(small_pair[k])))
+            for k in ("target", "reference")}
 
 
 def _truncated(pair, tmp_path):

@@ -47,11 +47,11 @@ def test_qgis_process_lists_the_algorithm(qgis_env):
     assert "hamta:registersift" in algs
 
 
-def test_qgis_process_run_writes_outputs(qgis_env, demo_pair, tmp_path):
+def test_qgis_process_run_writes_outputs(qgis_env, small_pair, tmp_path):
     out = {"OUTPUT": tmp_path / "reg.tif", "GCP_LAYER": tmp_path / "gcps.gpkg",
            "GCP_POINTS": tmp_path / "gcps.points", "REPORT": tmp_path / "report.json"}
     proc = _qgis_process(qgis_env, "--json", "run", "hamta:registersift", "--",
-                         f"TARGET={demo_pair['target']}", f"REFERENCE={demo_pair['reference']}", "MODEL=1",
+                         f"TARGET={small_pair['target']}", f"REFERENCE={small_pair['reference']}", "MODEL=1",
                          *[f"{k}={v}" for k, v in out.items()])
     assert proc.returncode == 0, proc.stderr
     results = json.loads(proc.stdout)["results"]
@@ -60,9 +60,9 @@ def test_qgis_process_run_writes_outputs(qgis_env, demo_pair, tmp_path):
     assert results["N_GCPS"] >= 50
 
 
-def test_qgis_process_reports_bad_input(qgis_env, demo_pair, tmp_path):
-    proc = _qgis_process(qgis_env, "run", "hamta:registersift", "--", f"TARGET={demo_pair['target']}",
-                         f"REFERENCE={demo_pair['target']}", "TARGET_GEOREF=1", f"OUTPUT={tmp_path / 'o.tif'}")
+def test_qgis_process_reports_bad_input(qgis_env, small_pair, tmp_path):
+    proc = _qgis_process(qgis_env, "run", "hamta:registersift", "--", f"TARGET={small_pair['target']}",
+                         f"REFERENCE={small_pair['target']}", "TARGET_GEOREF=1", f"OUTPUT={tmp_path / 'o.tif'}")
     assert proc.returncode == 1
     assert "has no georeferencing" in proc.stderr and not (tmp_path / "o.tif").exists()
 

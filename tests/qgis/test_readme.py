@@ -40,7 +40,7 @@ def test_the_headless_block_runs_as_printed(tmp_path):
     from hamta.bench.sample import make_demo_pair
 
     repo = checkout(tmp_path / "hamta")
-    make_demo_pair(str(repo / "demo-output" / "sample"))
+    make_demo_pair(str(repo / "demo-output" / "sample"), side=400)  # the README reads it; its size only costs time
     home = tmp_path / "home"
     (home / "xdg").mkdir(mode=0o700, parents=True)
     env = {"PATH": "/usr/bin:/bin", "HOME": str(home), "XDG_RUNTIME_DIR": str(home / "xdg")}
