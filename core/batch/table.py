@@ -10,14 +10,13 @@ from __future__ import annotations
 
 import csv
 import os
-import sqlite3
 from typing import List
 
 import numpy as np
 
 from ..basemap.redact import redact
 from ..outputs.atomic import OutputSet
-from ..outputs.gpkg import add_feature_layer, add_srs, create_metadata, polygon_blob, srs_entry
+from ..outputs.gpkg import add_feature_layer, add_srs, connect_staged, create_metadata, polygon_blob, srs_entry
 from ..text import printable
 
 LAYER = "pairs"
@@ -55,7 +54,7 @@ def _write_csv(path: str, records: List[dict]) -> None:
 def _write_gpkg(path: str, records: List[dict]) -> None:
     crs_wkt, footprints = _footprints(records)
     srs = srs_entry(crs_wkt)
-    con = sqlite3.connect(path)
+    con = connect_staged(path)
     try:
         create_metadata(con)
         add_srs(con, srs)
