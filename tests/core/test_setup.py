@@ -26,3 +26,48 @@ def test_a_user_is_told_in_one_line_what_was_skipped(tmp_path):
     assert "SKIPPED" in run.stdout  # -rs lists each skip with its reason
     assert f"hamta: development data not found at {tmp_path / 'nowhere'}/data (set HAMTA_SHARED); 1 tests skipped" \
         in run.stdout
+
+
+class _Case:
+    """A collected test case as the split hook sees it."""
+
+    def __init__(self, name, params, split=None):
+        self.nodeid = f"tests/core/test_x.py::{name}[{'-'.join(map(str, params.values()))}]"
+        self.callspec = type("CallSpec", (), {"params": params})()
+        self._split = split
+
+    def get_closest_marker(self, name):
+        return None if self._split is None or name != "split" else type("Mark", (), {"args": self._split})()
+
+
+def _conftest():
+    """The tests' own conftest module, as pytest loaded it."""
+    return next(m for m in list(sys.modules.values()) if getattr(m, "__file__", None) == str(REPO / "tests" /
+                                                                                              "conftest.py"))
+
+
+def _halves(items, monkeypatch):
+    out = []
+    for half in ("0", "1"):
+        monkeypatch.setenv("HAMTA_TEST_HALF", half)
+        kept, config = list(items), type("Config", (), {"hook": type("Hook", (), {})()})()
+        config.hook.pytest_deselected = lambda items: None
+        _conftest().pytest_collection_modifyitems(config, kept)
+        out.append({i.nodeid for i in kept})
+    return out
+
+
+def test_split_tests_run_each_case_once_and_every_shared_value_on_both_halves(monkeypatch):
+    cases = [_Case("t", {"angle": a, "method": m}, split=("angle",)) for a in (45, 137) for m in ("rilbp", "cslbp")]
+    cases += [_Case("w", {"wrong": w}, split=()) for w in ("shift4", "rot2", "scale1.05")]
+    cases += [_Case("plain", {"model": m}) for m in ("affine", "tps")]
+    a, b = _halves(cases, monkeypatch)
+    assert a | b == {c.nodeid for c in cases} and a & b == {c.nodeid for c in cases if c.nodeid.startswith(
+        "tests/core/test_x.py::plain")}
+    for half in (a, b):
+        assert {n for n in half if "::t[" in n and "rilbp" in n} and {n for n in half if "::t[" in n and "cslbp" in n}
+        assert {n for n in half if "::w[" in n}
+    monkeypatch.delenv("HAMTA_TEST_HALF")
+    kept = list(cases)
+    _conftest().pytest_collection_modifyitems(None, kept)
+    assert kept == cases  # a plain pytest runs every case
