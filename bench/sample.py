@@ -28,11 +28,11 @@ def make_demo_pair(folder: str, side: int = 1000):
     smaller pair of the same make, target and shift scaled alike (the tests' quick pair).
     """
     os.makedirs(folder, exist_ok=True)
-    k = side / 1000.0
-    shape = (round(TARGET_SHAPE[0] * k), round(TARGET_SHAPE[1] * k))
+    f = side / 1000.0
+    shape = (round(TARGET_SHAPE[0] * f), round(TARGET_SHAPE[1] * f))
     ref = make_landscape((side, side), seed=7)
     g = similarity_matrix(DEMO_TRUTH["angle_deg"], DEMO_TRUTH["scale"], shape, ref.shape[1:],
-                          [v * k for v in DEMO_TRUTH["shift_px"]])
+                          [v * f for v in DEMO_TRUTH["shift_px"]])
     tgt = warp_to_target(ref, g, shape)
     rng = np.random.default_rng(11)
     tgt = 255.0 * (np.clip(tgt, 0, 255) / 255.0) ** 0.8 + rng.normal(0, 3.0, tgt.shape)

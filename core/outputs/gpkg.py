@@ -144,8 +144,8 @@ def _write_shifts(con, result, layer: str, srs_id: int) -> None:
 
 def connect_staged(path: str) -> sqlite3.Connection:
     """A connection to a GeoPackage being written in an output set's staging folder. SQLite's own syncs
-    are turned off (a dozen fsyncs, about 0.1 s a run): the file is published whole or dropped with its
-    staging folder, so a crash mid-write leaves nothing to recover."""
+    are turned off (a dozen fsyncs: milliseconds on a quiet disk, a tenth of a second on a busy one): the
+    file is published whole or dropped with its staging folder, so a crash mid-write leaves nothing to recover."""
     con = sqlite3.connect(path)
     con.execute("PRAGMA synchronous = OFF")
     con.execute("PRAGMA journal_mode = MEMORY")
