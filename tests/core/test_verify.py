@@ -37,7 +37,6 @@ def test_the_true_model_verifies_with_a_small_error_bound(demo):
     assert json.loads(json.dumps(v.to_dict()))["verdict"] == "verified"
 
 
-@pytest.mark.split
 @pytest.mark.parametrize("wrong", ["shift4", "shift12", "shift80", "rot2", "rot90", "scale1.05"])
 def test_wrong_models_do_not_verify(demo, wrong):
     t, tb, r, rb, truth = demo
