@@ -28,11 +28,11 @@ def make_demo_pair(folder: str, side: int = 1000):
     smaller pair of the same make, target and shift scaled alike (the tests' quick pair).
     """
     os.makedirs(folder, exist_ok=True)
-    f = side / 1000.0
-    shape = (round(TARGET_SHAPE[0] * f), round(TARGET_SHAPE[1] * f))
+    factor = side / 1000.0
+    shape = (round(TARGET_SHAPE[0] * factor), round(TARGET_SHAPE[1] * factor))
+    shift = [v * factor for v in DEMO_TRUTH["shift_px"]]
     ref = make_landscape((side, side), seed=7)
-    g = similarity_matrix(DEMO_TRUTH["angle_deg"], DEMO_TRUTH["scale"], shape, ref.shape[1:],
-                          [v * f for v in DEMO_TRUTH["shift_px"]])
+    g = similarity_matrix(DEMO_TRUTH["angle_deg"], DEMO_TRUTH["scale"], shape, ref.shape[1:], shift)
     tgt = warp_to_target(ref, g, shape)
     rng = np.random.default_rng(11)
     tgt = 255.0 * (np.clip(tgt, 0, 255) / 255.0) ** 0.8 + rng.normal(0, 3.0, tgt.shape)
@@ -48,7 +48,7 @@ def make_demo_pair(folder: str, side: int = 1000):
                            count=3, dtype="uint8", photometric="RGB", compress="deflate") as dst:
             dst.write(tgt)
     with open(paths["truth"], "w") as f:
-        json.dump(dict(DEMO_TRUTH, target_px_to_reference_px=g.tolist()), f, indent=1)
+        json.dump(dict(DEMO_TRUTH, shift_px=shift, target_px_to_reference_px=g.tolist()), f, indent=1)
     return paths
 
 

@@ -26,28 +26,34 @@ def pytest_configure(config):
         raise pytest.UsageError(f"{MISSING_DATA}; HAMTA_REQUIRE_DATA=1 forbids skipping the tests that need it")
 
 
+@pytest.hookimpl(trylast=True)  # after -k and -m: the cases asked for are shared out, none lost
 def pytest_collection_modifyitems(config, items):
     """``make test`` runs two halves, one per stack (HAMTA_TEST_HALF 0 and 1). A test marked ``split`` has
     cases that share one code path: each half runs every other case, so both stacks run the test and each
     case runs once. The marker's arguments name the parameters that are shared out (all by default): the cases
-    that differ only in those alternate, so every value of the others runs on both stacks."""
+    that differ only in those form a group and alternate, so every value of the others runs on both stacks;
+    successive groups start on alternate halves, so every shared value does too. A group of one (as ``-k``
+    may leave) runs on both halves."""
     half = os.environ.get("HAMTA_TEST_HALF")
     if half not in ("0", "1"):
         return
-    seen, kept, dropped = {}, [], []
+    groups = {}
     for item in items:
         mark = item.get_closest_marker("split")
         if mark is None or not hasattr(item, "callspec"):
-            kept.append(item)
             continue
-        shared = set(mark.args) or set(item.callspec.params)
-        key = (item.nodeid.split("[")[0],) + tuple(sorted((k, repr(v)) for k, v in item.callspec.params.items()
-                                                         if k not in shared))
-        seen[key] = seen.get(key, -1) + 1
-        (kept if seen[key] % 2 == int(half) else dropped).append(item)
+        params = item.callspec.params
+        if not set(mark.args) <= set(params):
+            raise pytest.UsageError(f"{item.nodeid}: split{mark.args} names parameters the test does not have "
+                                    f"({', '.join(sorted(params))})")
+        shared = set(mark.args) or set(params)
+        key = (item.nodeid.split("[")[0],) + tuple(sorted((k, repr(v)) for k, v in params.items() if k not in shared))
+        groups.setdefault(key, []).append(item)
+    dropped = {id(m) for g, members in enumerate(groups.values()) if len(members) > 1
+               for i, m in enumerate(members) if (i + g) % 2 != int(half)}
     if dropped:
-        config.hook.pytest_deselected(items=dropped)
-        items[:] = kept
+        config.hook.pytest_deselected(items=[i for i in items if id(i) in dropped])
+        items[:] = [i for i in items if id(i) not in dropped]
 
 
 def pytest_terminal_summary(terminalreporter):

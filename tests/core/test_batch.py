@@ -101,7 +101,7 @@ def test_a_worker_killed_mid_batch_loses_no_pair_and_corrupts_no_output(tmp_path
         assert not [n for n in os.listdir(r["out"]) if n.startswith(".hamta-staging-")]
 
 
-def test_a_big_scene_measures_its_local_windows_on_the_cluster(tmp_path, small_pair, cluster):
+def test_a_big_scene_measures_its_local_windows_on_the_cluster(tmp_path, demo_pair, cluster):
     import psutil
 
     from hamta.cli.main import main
@@ -110,7 +110,7 @@ def test_a_big_scene_measures_its_local_windows_on_the_cluster(tmp_path, small_p
     busy = lambda: sum(psutil.Process(w.pid).cpu_times().user for w in workers)  # noqa: E731
     before = busy()
     out = tmp_path / "out"
-    rc = main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out", str(out),
+    rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--out", str(out),
                "--method", "sift", "--local", "--scheduler", address, "--quiet"])
     report = json.loads((out / "report.json").read_text())
     assert rc == 0 and report["model"]["type"] == "tps" and report["local"]["n_kept"] >= 40

@@ -48,10 +48,10 @@ def test_map_points_uses_the_stored_model(tmp_path, small_pair, capsys, model):
     main(["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--model", model,
           "--out", str(out), "--outputs", "report", "--quiet"])
     capsys.readouterr()
-    assert main(["map-points", str(out / "report.json"), "10", "20", "300.5", "400.25", "--json"]) == 0
+    assert main(["map-points", str(out / "report.json"), "10", "20", "250.5", "200.25", "--json"]) == 0
     rows = json.loads(capsys.readouterr().out)
     report = json.loads((out / "report.json").read_text())
-    ref = model_from_dict(report["model"]).apply([[10, 20], [300.5, 400.25]])
+    ref = model_from_dict(report["model"]).apply([[10, 20], [250.5, 200.25]])  # inside the 304 x 280 px target
     assert np.allclose([r["reference_px"] for r in rows], ref)
     gt = report["reference"]["transform"]  # GDAL order: c, a, b, f, d, e
     x, y = rows[1]["reference_px"]

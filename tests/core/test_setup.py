@@ -57,16 +57,23 @@ def _halves(items, monkeypatch):
     return out
 
 
-def test_split_tests_run_each_case_once_and_every_shared_value_on_both_halves(monkeypatch):
+def test_split_tests_run_each_case_once_and_every_value_on_both_halves(monkeypatch):
+    import pytest
+
     cases = [_Case("t", {"angle": a, "method": m}, split=("angle",)) for a in (45, 137) for m in ("rilbp", "cslbp")]
     cases += [_Case("w", {"wrong": w}, split=()) for w in ("shift4", "rot2", "scale1.05")]
     cases += [_Case("plain", {"model": m}) for m in ("affine", "tps")]
+    cases += [_Case("alone", {"angle": 45, "method": "sift"}, split=("angle",))]  # a group of one, as -k leaves
     a, b = _halves(cases, monkeypatch)
-    assert a | b == {c.nodeid for c in cases} and a & b == {c.nodeid for c in cases if c.nodeid.startswith(
-        "tests/core/test_x.py::plain")}
+    everywhere = {c.nodeid for c in cases if "::plain[" in c.nodeid or "::alone[" in c.nodeid}
+    assert a | b == {c.nodeid for c in cases} and a & b == everywhere
     for half in (a, b):
-        assert {n for n in half if "::t[" in n and "rilbp" in n} and {n for n in half if "::t[" in n and "cslbp" in n}
+        for value in ("rilbp", "cslbp", "[45-", "[137-"):  # every method and every angle on both stacks
+            assert {n for n in half if "::t[" in n and value in n}, (value, half)
         assert {n for n in half if "::w[" in n}
+    monkeypatch.setenv("HAMTA_TEST_HALF", "0")
+    with pytest.raises(pytest.UsageError, match="names parameters"):
+        _conftest().pytest_collection_modifyitems(None, [_Case("typo", {"angle": 1, "m": 2}, split=("angle, m",))])
     monkeypatch.delenv("HAMTA_TEST_HALF")
     kept = list(cases)
     _conftest().pytest_collection_modifyitems(None, kept)

@@ -1,5 +1,6 @@
-"""The README's headless block, run as printed: a checkout, ``make demo``'s sample, a fresh home
-with no QGIS profile yet, and a bare environment (no virtual environment, no display)."""
+"""The README's headless block, run as printed: a checkout, a sample where ``make demo`` writes it (the demo's
+make at 400 px), a fresh home with no QGIS profile yet, and a bare environment (no virtual environment, no
+display)."""
 import json
 import pathlib
 import re
