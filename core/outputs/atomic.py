@@ -155,6 +155,13 @@ class OutputSet:
             json.dump({"run_id": self.run_id, "published": time.strftime("%Y-%m-%dT%H:%M:%S"),
                        "files": {n: os.path.getsize(os.path.join(staging, n)) for n in names}}, f, indent=1)
         os.mkdir(os.path.join(staging, REPLACED))
+        try:
+            for name in names + [MANIFEST]:
+                _sync(os.path.join(staging, name))
+            _sync(staging)
+        except OSError as err:
+            raise OutputError(f"Could not write the outputs to the disk in '{folder}' ({err.strerror or err}); the "
+                              "folder was left as it was.") from None
         with signals_deferred(), folder_lock(folder):
             _recover_locked(folder)
             previous = published_files(folder)
@@ -245,11 +252,36 @@ def _roll_back(folder: str, journal: dict) -> None:
         os.remove(os.path.join(folder, JOURNAL))
 
 
+def _sync(path: str) -> None:
+    """Flush a staged file (or folder) to the disk before the journal commits the set, so that a power cut
+    after the commit cannot leave a published file short. A folder cannot be flushed on every system (not
+    on Windows): there the files' own flushes are what is kept."""
+    if os.path.isdir(path):
+        with contextlib.suppress(OSError):
+            fd = os.open(path, os.O_RDONLY)
+            try:
+                os.fsync(fd)
+            finally:
+                os.close(fd)
+        return
+    with open(path, "rb+") as f:
+        _flush(f)
+
+
+def _flush(f) -> None:
+    """os.fsync, where the file system has it."""
+    try:
+        os.fsync(f.fileno())
+    except OSError as err:
+        if err.errno not in (errno.EINVAL, errno.ENOTSUP, errno.ENOSYS):
+            raise
+
+
 def _write_durably(path: str, content: dict) -> None:
     with open(path, "w", encoding="utf-8") as f:
         json.dump(content, f)
         f.flush()
-        os.fsync(f.fileno())
+        _flush(f)
 
 
 @contextlib.contextmanager

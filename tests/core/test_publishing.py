@@ -1,6 +1,7 @@
 """Nothing lost, nothing mixed (issue 25): SIGKILL at every step of publishing leaves exactly the old set or
 exactly the new one, and batch resume agrees; files Hamta did not write are never replaced or removed
 without ``--overwrite``; exit codes stay right when the standard streams are closed, full or abandoned."""
+import errno
 import hashlib
 import json
 import os
@@ -103,6 +104,44 @@ def test_sigkill_at_every_step_of_publishing_leaves_the_old_set_or_the_new_one(t
                 assert all(os.path.isfile(p) for p in record["outputs"].values())
         k += 1
     assert steps and steps >= 6 and k == steps + 1, (steps, k)
+
+
+def test_every_file_reaches_the_disk_before_the_set_is_committed(tmp_path, results, monkeypatch):
+    import hamta.core.outputs.atomic as atomic
+
+    (result, options, _), _ = results
+    events, sync, commit = [], atomic._sync, atomic._write_durably
+    monkeypatch.setattr(atomic, "_sync", lambda path: (events.append(os.path.basename(path)), sync(path)))
+    monkeypatch.setattr(atomic, "_write_durably", lambda path, journal: (events.append(journal), commit(path, journal)))
+    write_outputs(result, OutputPaths.in_folder(str(tmp_path / "out")), request=run_request("sift", None, options,
+                                                                                            False))
+    journals = [e for e in events if isinstance(e, dict)]
+    assert len(journals) == 1
+    flushed = events[:events.index(journals[0])]
+    assert set(journals[0]["files"]) | {MANIFEST} <= set(flushed) and flushed[-1].startswith(STAGING_PREFIX)
+
+
+@pytest.mark.parametrize("err", [errno.EIO, errno.ENOSPC, errno.EINVAL])
+def test_a_file_that_cannot_reach_the_disk_publishes_nothing(tmp_path, results, monkeypatch, err):
+    """A disk error surfacing at fsync (delayed allocation on a full disk) leaves the folder as it was; a file
+    system without fsync (EINVAL) publishes as usual."""
+    from hamta.core.errors import OutputError
+
+    (result, options, _), _ = results
+
+    def fsync(fd):
+        raise OSError(err, os.strerror(err))
+
+    monkeypatch.setattr(os, "fsync", fsync)
+    out = tmp_path / "out"
+    paths, request = OutputPaths.in_folder(str(out)), run_request("sift", None, options, False)
+    if err == errno.EINVAL:
+        write_outputs(result, paths, request=request)
+        assert (out / "registered.tif").is_file() and (out / MANIFEST).is_file()
+        return
+    with pytest.raises(OutputError, match="to the disk"):
+        write_outputs(result, paths, request=request)
+    assert not out.exists() or os.listdir(out) == []
 
 
 def test_a_publication_that_fails_at_its_last_step_leaves_the_old_set_and_its_manifest(tmp_path, results,
