@@ -1,8 +1,11 @@
-"""``make test`` on a machine without the development data: CI fails at once, a user is told in one line."""
+"""``make test`` on a machine without the development data: CI fails at once, a user is told in one line; and
+how its two halves share the cases of `split` tests."""
 import os
 import pathlib
 import subprocess
 import sys
+
+import pytest
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 NEEDS_DATA = "tests/core/test_working.py::test_pixel_mode_without_reference_georeferencing"
@@ -58,8 +61,6 @@ def _halves(items, monkeypatch):
 
 
 def test_split_tests_run_each_case_once_and_every_value_on_both_halves(monkeypatch):
-    import pytest
-
     cases = [_Case("t", {"angle": a, "method": m}, split=("angle",)) for a in (45, 137) for m in ("rilbp", "cslbp")]
     cases += [_Case("w", {"wrong": w}, split=()) for w in ("shift4", "rot2", "scale1.05")]
     cases += [_Case("plain", {"model": m}) for m in ("affine", "tps")]
