@@ -10,9 +10,10 @@ def all_studies():
     from .goals.large import STUDY as large
     from .goals.speed import STUDY as speed
     from .goals.writing import STUDY as writing
+    from .goals.years_apart import STUDY as years_apart
     from .reproductions.lines_spectral import STUDY as lines_spectral
     from .reproductions.ndsift import STUDY as ndsift
     from .reproductions.rilbp import STUDY as rilbp
     from .reproductions.sibrif import STUDY as sibrif
 
-    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, speed]
+    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, speed, years_apart]
