@@ -76,6 +76,7 @@ def truth_points(target: str, reference: str, n: int = GRID):
 
 def run_unit(unit, config) -> list:
     from ...core import RegisterOptions, run
+    from ...core.errors import HamtaError
     from ..memory import PeakRss
 
     i, method = unit
@@ -86,15 +87,18 @@ def run_unit(unit, config) -> list:
     pts, truth = truth_points(os.path.join(config.data_dir, FOLDER, name), reference)
     row = {"case": case, "method": method, "moved_px": list(move)}
     t0 = time.perf_counter()
+    result, failure = None, None
     with PeakRss() as peak:
         try:
             result, _ = run(target, reference, None, method=method, options=RegisterOptions(),
                             accept_unverified=True)
-        except Exception as exc:  # an honest failure (no model) or a crash: reported either way
-            result, row["error"] = None, f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"
+        except HamtaError:  # an honest failure: no model
+            failure = "no model"
+        except Exception:  # a bug, reported as such
+            failure = "crash"
     row.update(time_s=time.perf_counter() - t0, peak_mb=peak.peak)
     if result is None:
-        return [dict(row, method_used=None, verdict="no model", rms_px=None, offset_px=None, bound_px=None)]
+        return [dict(row, method_used=None, verdict=failure, rms_px=None, offset_px=None, bound_px=None)]
     off = result.model.apply(pts) - truth
     return [dict(row, method_used=result.method, verdict=result.verification.verdict,
                  rms_px=float(np.sqrt(np.mean(np.sum(off ** 2, axis=1)))), offset_px=off.mean(axis=0).tolist(),
