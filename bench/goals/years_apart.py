@@ -106,17 +106,19 @@ def run_unit(unit, config) -> list:
 
 
 def tables(rows) -> list:
-    body, met = [], 0
+    body, met = [], {}
     for r in sorted(rows, key=lambda r: (r["case"], r["method"])):
         within = r["verdict"] == "verified" and r["rms_px"] is not None and r["rms_px"] <= GOAL_PX
-        met += within
+        done, n = met.get(r["method"], (0, 0))
+        met[r["method"]] = (done + within, n + 1)
         body.append([r["case"], r["method"], "{:+d}, {:+d}".format(*r["moved_px"]), r["method_used"] or "–",
                      r["verdict"], _num(r["rms_px"], ".2f"),
                      "–" if r["offset_px"] is None else "{:+.2f}, {:+.2f}".format(*r["offset_px"]),
                      _num(r["bound_px"], ".2f"), "yes" if within else "no", f"{r['time_s']:.1f}",
                      f"{r['peak_mb']:.0f}"])
-    return [{"title": f"years-apart: one date's file, its georeferencing moved, onto another date; {met} of "
-                      f"{len(rows)} verified within {GOAL_PX:g} px",
+    counts = "; ".join(f"{m} {done} of {n}" for m, (done, n) in sorted(met.items()))
+    return [{"title": f"years-apart: one date's file, its georeferencing moved, onto another date; verified within "
+                      f"{GOAL_PX:g} px: {counts}",
              "columns": ["case", "method", "moved px", "via", "verdict", "err rms px", "mean offset px", "bound px",
                          f"<= {GOAL_PX:g} px", "time s", "peak MB"], "rows": body,
              "note": "Error: RMS over a 20 x 20 grid of target points against the file's own georeferencing, in "
