@@ -19,8 +19,8 @@ import numpy as np
 
 from ..study import Study
 from .basemap import _num
+from .basemap_real import FOLDER
 
-FOLDER = "timeseries"
 PAIRS = (  # target date, reference date, the target's georeferencing moved by (x, y) target px
     ("naip_20090818.tif", "naip_20160816.tif", (23, -27)),
     ("naip_20100629.tif", "naip_20150926.tif", (-25, 21)),
@@ -45,20 +45,23 @@ def units(config):
 
 
 def moved_target(i: int, data_dir: str, folder: str) -> str:
-    """Pair ``i``'s target date with its geotransform moved by the pair's offset, in ``folder``."""
+    """Pair ``i``'s target date in ``folder``: the file copied byte for byte, then its geotransform moved by the
+    pair's offset (band descriptions, colour interpretation and tags as the producer wrote them, so that Hamta
+    reads it as it reads the original)."""
+    import shutil
+
     import rasterio
     from affine import Affine
 
     name, _, (dx, dy) = PAIRS[i]
-    path = os.path.join(folder, f"moved_{name}")
+    path = os.path.join(folder, f"moved_{dx:+d}_{dy:+d}_{name}")
     if not os.path.exists(path):
         os.makedirs(folder, exist_ok=True)
-        with rasterio.open(os.path.join(data_dir, FOLDER, name)) as src:
-            profile, data = src.profile, src.read()
-        profile.update(transform=profile["transform"] * Affine.translation(dx, dy))
-        with rasterio.open(path + ".part", "w", **profile) as dst:
-            dst.write(data)
-        os.replace(path + ".part", path)
+        part = f"{path}.{os.getpid()}.part"  # units of one pair may run side by side
+        shutil.copyfile(os.path.join(data_dir, FOLDER, name), part)
+        with rasterio.open(part, "r+", IGNORE_COG_LAYOUT_BREAK="YES") as dst:
+            dst.transform = dst.transform * Affine.translation(dx, dy)
+        os.replace(part, path)
     return path
 
 
@@ -92,10 +95,9 @@ def run_unit(unit, config) -> list:
         try:
             result, _ = run(target, reference, None, method=method, options=RegisterOptions(),
                             accept_unverified=True)
-        except HamtaError:  # an honest failure: no model
-            failure = "no model"
-        except Exception:  # a bug, reported as such
-            failure = "crash"
+        except Exception as exc:  # a HamtaError is an honest failure (no model); anything else a bug
+            failure = "no model" if isinstance(exc, HamtaError) else "crash"
+            row["error"] = f"{type(exc).__name__}: {exc}"
     row.update(time_s=time.perf_counter() - t0, peak_mb=peak.peak)
     if result is None:
         return [dict(row, method_used=None, verdict=failure, rms_px=None, offset_px=None, bound_px=None)]
