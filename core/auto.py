@@ -34,11 +34,11 @@ AUTO = "auto"
 
 # The shift's verified result whose check bounds its error above this share of the tolerance (0.5 px of the
 # default 3) lets the precise steps try to do better; the one with the smaller bound is kept. On NAIP pairs
-# five to seven years apart, the shift verified with bounds of 0.46-1.93 px (errors 0.29-1.66 px) where
-# xmodal's bounds were 0.33-0.91 px (errors 0.18-0.57 px). Relative, because a user who asks for 15 px does
-# not want the time spent on a tenth of a pixel. Only after the shift: after SIFT (refined at full
-# resolution, the fast path of pairs without georeferencing) xmodal and XFeat took a small optical pair's
-# bound from 3.63 to 3.21 px in 9 s more.
+# two to seven years apart (``hamta bench --families years-apart``), the shift verified with bounds of
+# 0.69-1.33 px (errors 0.44-0.86 px) where xmodal's bounds were 0.31-0.88 px (errors 0.16-0.56 px).
+# Relative, because a user who asks for 15 px does not want the time spent on a tenth of a pixel. Only
+# after the shift: after SIFT (refined at full resolution, the fast path of pairs without georeferencing)
+# xmodal and XFeat took a small optical pair's bound from 3.63 to 3.21 px in 9 s more.
 PRECISE_SHARE = 1 / 6
 
 
