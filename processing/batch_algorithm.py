@@ -27,10 +27,10 @@ from ..core.batch.table import write_results
 from ..core.batch.task import BatchSettings
 from ..core.errors import HamtaError
 from ..core.methods import all_methods
-from ..core.reference import ServiceReference, resolve_reference
 from .help import help_url
 from .mapping import register_settings
 from .options import advanced, option_parameters, option_values
+from .reference import layer_reference
 from .register_algorithm import PlainNumbers, feedback_progress
 
 _CONTEXT = "BatchRegisterAlgorithm"
@@ -112,16 +112,15 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         if jobs_file:
             return read_jobs(jobs_file, out)
         layers = self.parameterAsLayerList(parameters, self.TARGETS, context)
-        reference = self.parameterAsRasterLayer(parameters, self.REFERENCE, context)
-        if not layers or reference is None:
+        layer = self.parameterAsRasterLayer(parameters, self.REFERENCE, context)
+        if not layers or layer is None:
             raise QgsProcessingException(self.tr("Choose target rasters and a reference raster, or a job list."))
-        if reference.providerType() != "gdal" and not isinstance(resolve_reference(reference.source()),
-                                                                 ServiceReference):
+        reference = layer_reference(layer)
+        if reference is None:
             raise QgsProcessingException(self.tr(
                 "The reference layer '{}' ({}) cannot be read by every pair of a batch: use a raster file, an XYZ or "
-                "WMS layer, or save the layer's area as a GeoTIFF first.").format(reference.name(),
-                                                                                 reference.providerType()))
-        return jobs_for_targets([layer.source() for layer in layers], reference.source(), out)
+                "WMS layer, or save the layer's area as a GeoTIFF first.").format(layer.name(), layer.providerType()))
+        return jobs_for_targets([target.source() for target in layers], reference, out)
 
     def processAlgorithm(self, parameters, context, feedback):
         out = self.parameterAsString(parameters, self.OUTPUT_FOLDER, context)

@@ -41,13 +41,17 @@ def reference_source(layer, extent, target: str, max_pixels: int):
 def prepare_reference(layer, extent, target: str, max_pixels: int):
     """The resolved reference for ``layer``, or a :class:`Rendering` to write in a worker thread (made
     here, in the layer's thread: it holds a clone of the layer's provider)."""
+    return layer_reference(layer) or Rendering(layer, _area(layer, extent, target), max_pixels)
+
+
+def layer_reference(layer):
+    """The resolved reference the core reads ``layer`` as (a GDAL layer's source, or a map service Hamta
+    reads itself), or None for a layer only QGIS reads (:func:`prepare_reference` renders it)."""
     provider, source = layer.providerType(), layer.source()
     if provider == "gdal":
         return RasterReference(source)
     resolved = resolve_reference(source) if provider == "wms" else None
-    if isinstance(resolved, ServiceReference):
-        return resolved
-    return Rendering(layer, _area(layer, extent, target), max_pixels)
+    return resolved if isinstance(resolved, ServiceReference) else None
 
 
 def extent_text(rect, crs) -> str:

@@ -1,9 +1,9 @@
-"""What a batch registers: one :class:`Job` per target/reference pair.
+"""What a batch registers: one :class:`Job` per target/reference pair, its reference resolved.
 
 Sources: a CSV file or a GeoPackage table with a ``target`` column and optional ``reference``,
 ``method``, ``model``, ``extent`` (a search area, see :mod:`hamta.core.extent`) and ``output``
 columns (rasters relative to the list's folder; a reference may also be a map service or a GDAL
-string, kept as written); or a folder or
+string, kept as written: :func:`hamta.core.reference.resolve_reference`, once per row); or a folder or
 glob pattern of targets, all registered onto one reference (a raster or a VRT mosaic). A row's
 ``output`` is a folder inside ``out``, relative to it: an absolute path, a ``..`` that leaves
 ``out``, or two rows with the same folder are refused before any work. A job without its own output
@@ -15,26 +15,26 @@ import csv
 import glob
 import hashlib
 import os
-import re
 import sqlite3
 from dataclasses import dataclass
-from typing import List, Optional
+from typing import List, Optional, Union
 
 from ..errors import InputError
 from ..extent import parse_extent
 from ..methods import get_method
 from ..options import MODEL
-from ..reference import ServiceReference, resolve_reference
+from ..reference import Reference, resolve_reference
 
 RASTER_EXTENSIONS = (".tif", ".tiff", ".vrt", ".jp2", ".img", ".jpg", ".jpeg", ".png", ".nc", ".hdf", ".h5")
 
 
 @dataclass(frozen=True)
 class Job:
-    """One pair: rasters, where its outputs go, and the method/model when they differ from the batch's."""
+    """One pair: the target, its resolved reference, where its outputs go, and the method/model when they
+    differ from the batch's."""
 
     target: str
-    reference: str
+    reference: Reference
     out: str
     method: Optional[str] = None
     model: Optional[str] = None
@@ -43,7 +43,7 @@ class Job:
     @property
     def key(self) -> str:
         """A stable id of the job (same inputs, method, search area and output folder: same key)."""
-        text = "|".join([self.target, self.reference, self.out, self.method or "", self.model or ""]
+        text = "|".join([self.target, self.reference.text, self.out, self.method or "", self.model or ""]
                         + ([self.extent] if self.extent else []))
         return hashlib.sha1(text.encode()).hexdigest()[:16]
 
@@ -52,8 +52,9 @@ class Job:
         return os.path.basename(self.out)
 
 
-def read_jobs(source: str, out: str, reference: Optional[str] = None) -> List[Job]:
-    """The jobs of ``source`` (a .csv or .gpkg list, a folder, or a glob of targets with ``reference``)."""
+def read_jobs(source: str, out: str, reference: Union[str, Reference, None] = None) -> List[Job]:
+    """The jobs of ``source`` (a .csv or .gpkg list, a folder, or a glob of targets with ``reference``:
+    text, resolved here, or a resolved reference)."""
     if source.lower().endswith((".csv", ".gpkg")) and not os.path.exists(source):
         raise InputError(f"The job list '{source}' does not exist.")
     if source.lower().endswith(".csv") and os.path.isfile(source):
@@ -71,21 +72,23 @@ def read_jobs(source: str, out: str, reference: Optional[str] = None) -> List[Jo
     return _jobs(rows, base, out, reference, f"the job list '{source}'")
 
 
-def jobs_for_targets(targets: List[str], reference: str, out: str) -> List[Job]:
-    """One job per target onto ``reference``, each into ``<out>/<target name>`` (unique)."""
+def jobs_for_targets(targets: List[str], reference: Union[str, Reference], out: str) -> List[Job]:
+    """One job per target onto ``reference`` (text or a resolved reference), each into ``<out>/<target name>``
+    (unique)."""
     return _jobs([{"target": t} for t in targets], os.getcwd(), out, reference, "the targets")
 
 
-def _jobs(rows: list, base: str, out: str, reference: Optional[str], source: str) -> List[Job]:
+def _jobs(rows: list, base: str, out: str, reference, source: str) -> List[Job]:
     """Jobs from ``rows`` (dicts of the list's columns), rasters relative to ``base``."""
     root = os.path.abspath(out)
+    default = _reference(reference, os.getcwd())
     outputs = _outputs(rows, root, source)
     jobs, used = [], set(outputs.values())
     for i, row in enumerate(rows, start=1):
         target = _path(row.get("target"), base)
         if not target:
             raise InputError(f"Row {i} of {source} has no target.")
-        ref = _reference(row.get("reference"), base) or (_reference(reference, os.getcwd()) if reference else None)
+        ref = _reference(row.get("reference"), base) or default
         if not ref:
             raise InputError(f"Row {i} of {source} has no reference, and no --reference was given.")
         folder = outputs.get(i) or _unique(os.path.join(root, _stem(target)), used)
@@ -186,13 +189,11 @@ def _path(value, base: str) -> Optional[str]:
     return os.path.abspath(os.path.join(base, value)) if value else None
 
 
-def _reference(value, base: str) -> Optional[str]:
-    """A reference as a path relative to ``base``, or as written when it is a map service or a GDAL string."""
-    value = (value or "").strip() if isinstance(value, str) else None
-    if value and (isinstance(resolve_reference(value), ServiceReference) or value.startswith("/vsi")
-                  or re.match(r"[A-Za-z]\w+:", value)):
-        return value
-    return _path(value, base)
+def _reference(value, base: str) -> Optional[Reference]:
+    """``value`` (text, or a reference already resolved) resolved, paths relative to ``base``; None when empty."""
+    if isinstance(value, str):
+        value = value.strip()
+    return resolve_reference(value, base) if value else None
 
 
 def _stem(path: str) -> str:

@@ -21,11 +21,10 @@ from dataclasses import dataclass, replace
 from typing import Optional
 
 from ..basemap.redact import redact
-from ..basemap.services import redact_source
 from ..coords import raster_outline
 from ..errors import HamtaError, MethodCrashed, UnverifiedResult
 from ..options import OutputOptions, RegisterOptions
-from ..reference import ServiceReference, resolve_reference
+from ..reference import Reference, ServiceReference
 from .jobs import Job
 
 
@@ -104,14 +103,14 @@ def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
     return record
 
 
-def _same_reference(described: dict, reference: str) -> bool:
+def _same_reference(described: dict, reference: Reference) -> bool:
     """Whether ``report.json``'s reference (a file, a GDAL string without credentials, or a map service
     recognised by its digest) is ``reference``."""
     service = described.get("service")
-    if service:
-        parsed = resolve_reference(reference)
-        return isinstance(parsed, ServiceReference) and parsed.service.id == service.get("id")
-    return described["path"] in (reference, redact(reference)) or os.path.abspath(described["path"]) == reference
+    if isinstance(reference, ServiceReference):
+        return bool(service) and reference.service.id == service.get("id")
+    path = reference.path
+    return not service and (described["path"] in (path, redact(path)) or os.path.abspath(described["path"]) == path)
 
 
 def from_report(job: Job, method: str, seconds: float, rep: Optional[dict] = None) -> dict:
@@ -145,7 +144,7 @@ def failed_record(job: Job, method: str, seconds: float, message: str) -> dict:
 
 
 def _record(job: Job, method: str, status: str, seconds: float, **fields) -> dict:
-    record = {"key": job.key, "name": job.name, "target": job.target, "reference": redact_source(job.reference),
+    record = {"key": job.key, "name": job.name, "target": job.target, "reference": job.reference.label,
               "out": job.out,
               "method": method, "status": status, "time_s": round(float(seconds), 3), "method_used": None,
               "verdict": None, "error_bound_px": None, "rmse_px": None, "n_gcps": None, "outputs": {},

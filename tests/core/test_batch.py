@@ -11,6 +11,7 @@ from hamta.core.batch import read_jobs, run_batch
 from hamta.core.batch.table import write_results
 from hamta.core.batch.task import BatchSettings
 from hamta.core.errors import InputError
+from hamta.core.reference import RasterReference, ServiceReference, resolve_reference
 
 SIFT = BatchSettings(method="sift")
 
@@ -66,6 +67,65 @@ def test_a_local_cluster_registers_records_failures_and_resumes(tmp_path, small_
     again = run_batch(jobs, SIFT, workers=1)
     assert [r["resumed"] for r in again.records] == [False, True, True]
     assert again.counts() == {"pairs": 3, "verified": 2, "unverified": 0, "failed": 1, "resumed": 2}
+
+
+XYZ = "https://tiles.example.com/{z}/{x}/{y}.png"
+
+
+def test_a_reference_path_is_relative_to_the_job_list_and_a_service_or_gdal_string_is_kept(tmp_path, monkeypatch):
+    base = str(tmp_path / "lists")
+    assert resolve_reference(" ref.tif ", base) == RasterReference(str(tmp_path / "lists" / "ref.tif"))
+    assert resolve_reference("../ref.tif", base) == RasterReference(str(tmp_path / "ref.tif"))
+    assert resolve_reference("/data/ref.tif", base) == RasterReference("/data/ref.tif")
+    for text in ("/vsicurl/https://example.com/ref.tif", "WMTS:https://example.com/wmts?layer=a",
+                 "https://example.com/ref.tif"):
+        assert resolve_reference(text, base) == RasterReference(text)
+    service = resolve_reference(f" {XYZ} ", base)
+    assert isinstance(service, ServiceReference) and service.service.kind == "xyz" and service.text == XYZ
+    assert resolve_reference("ref.tif") == RasterReference("ref.tif")
+    assert resolve_reference(service, base) is service
+
+    (tmp_path / "lists").mkdir()
+    jobs_csv = tmp_path / "lists" / "jobs.csv"
+    jobs_csv.write_text(f"target,reference\na.tif,ref.tif\nb.tif,/vsicurl/https://example.com/ref.tif\nc.tif,{XYZ}\n"
+                        "d.tif,\n")
+    monkeypatch.chdir(tmp_path)
+    jobs = read_jobs(str(jobs_csv), str(tmp_path / "out"), "default.tif")
+    assert [j.reference for j in jobs] == [RasterReference(str(tmp_path / "lists" / "ref.tif")),
+                                           RasterReference("/vsicurl/https://example.com/ref.tif"), service,
+                                           RasterReference(str(tmp_path / "default.tif"))]
+
+
+def test_a_batch_resolves_reference_text_once_where_it_enters(tmp_path, small_pair, monkeypatch):
+    import hamta.core.reference as reference_module
+    from hamta.core.batch.task import register_job
+
+    parse, calls = reference_module.parse_service, []
+    monkeypatch.setattr(reference_module, "parse_service", lambda text: calls.append(text) or parse(text))
+    reference = os.path.abspath(small_pair["reference"])
+    folder = _targets(tmp_path, small_pair, 3)
+    jobs = read_jobs(str(folder), str(tmp_path / "out"), reference)
+    assert calls == [reference] and {j.reference for j in jobs} == {RasterReference(reference)}
+    (tmp_path / "jobs.csv").write_text(f"target,reference\ntargets/t00.tif,{reference}\ntargets/t01.tif,{XYZ}\n")
+    listed = read_jobs(str(tmp_path / "jobs.csv"), str(tmp_path / "listed"), reference)
+    assert calls == [reference, reference, reference, XYZ]  # --reference once, then each row's own
+    assert isinstance(listed[1].reference, ServiceReference)
+    assert register_job(jobs[0], SIFT)["status"] == "verified"
+    assert register_job(jobs[0], SIFT)["resumed"]
+    assert len(calls) == 4  # neither the run nor the resume looked at the text again
+
+
+def test_a_job_pickles_with_its_typed_reference_and_keeps_its_key():
+    import hashlib
+    import pickle
+
+    from hamta.core.batch.jobs import Job
+
+    for reference in (RasterReference("/data/ref.tif"), resolve_reference(XYZ)):
+        job = Job("/data/t.tif", reference, "/out/t", "sift", None, "1,2,3,4,EPSG:4326")
+        again = pickle.loads(pickle.dumps(job))
+        text = "|".join(["/data/t.tif", reference.text, "/out/t", "sift", "", "1,2,3,4,EPSG:4326"])
+        assert again == job and again.key == job.key == hashlib.sha1(text.encode()).hexdigest()[:16]
 
 
 @pytest.fixture
@@ -251,7 +311,7 @@ def test_an_unreachable_or_plain_tcp_scheduler_is_named_plainly(caplog, monkeypa
 def _job(name, out):
     from hamta.core.batch.jobs import Job
 
-    return Job(f"/nowhere/{name}.tif", "/nowhere/reference.tif", os.path.join(out, name))
+    return Job(f"/nowhere/{name}.tif", RasterReference("/nowhere/reference.tif"), os.path.join(out, name))
 
 
 @pytest.mark.parametrize("workers", [0, -2])

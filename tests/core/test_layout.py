@@ -208,3 +208,17 @@ def test_no_engine_module_is_longer_than_400_lines():
     long = [f"{p.relative_to(REPO)}: {n}" for p in (REPO / "core").rglob("*.py")
             if (n := len(p.read_text().splitlines())) > 400]
     assert not long, long
+
+
+def test_only_core_reference_tells_kinds_of_reference_text_apart():
+    """A map service is told from a raster in :func:`hamta.core.reference.resolve_reference` only."""
+    allowed = {REPO / "core" / "reference.py", REPO / "core" / "basemap" / "services.py"}
+    offenders = []
+    for top in ("core", "cli", "bench", "processing", "plugin"):
+        for path in set((REPO / top).rglob("*.py")) - allowed:
+            for node in ast.walk(ast.parse(path.read_text(), str(path))):
+                names = ([a.name for a in node.names] if isinstance(node, ast.ImportFrom)
+                         else [getattr(node, "id", None), getattr(node, "attr", None)])
+                if "parse_service" in names:
+                    offenders.append(f"{path.relative_to(REPO)}:{node.lineno}")
+    assert not offenders, offenders

@@ -18,6 +18,7 @@ from hamta.core.batch.jobs import Job
 from hamta.core.batch.task import BatchSettings, finished_record
 from hamta.core.outputs import OutputPaths, write_outputs
 from hamta.core.outputs.atomic import JOURNAL, MANIFEST, STAGING_PREFIX, remove_leftovers
+from hamta.core.reference import RasterReference
 from hamta.core.runner import run_request
 
 # Publishes the pickled result into the folder with os.replace killing the process at its K-th call
@@ -94,8 +95,8 @@ def test_sigkill_at_every_step_of_publishing_leaves_the_old_set_or_the_new_one(t
             assert set(after[0]) == set(manifest["files"]) | {MANIFEST}, f"killed at rename {k}: mixed set"
             assert all(os.path.getsize(folder / n) == s for n, s in manifest["files"].items())
             assert json.load(open(folder / "report.json"))["run_id"] == after[1]
-        job = Job(target=os.path.abspath(small_pair["target"]), reference=os.path.abspath(small_pair["reference"]),
-                  out=str(folder))
+        job = Job(target=os.path.abspath(small_pair["target"]),
+                  reference=RasterReference(os.path.abspath(small_pair["reference"])), out=str(folder))
         holds_old = after[1] == before[1]
         for options, expected in ((old_options, holds_old), (new_options, not holds_old)):
             record = finished_record(job, BatchSettings(method="sift", options=options))
@@ -200,8 +201,8 @@ def test_a_batch_row_into_a_folder_of_the_users_files_fails_that_row_only(tmp_pa
     out = tmp_path / "pair"
     out.mkdir()
     (out / "registered.tif").write_bytes(b"mine")
-    job = Job(target=os.path.abspath(small_pair["target"]), reference=os.path.abspath(small_pair["reference"]),
-              out=str(out))
+    job = Job(target=os.path.abspath(small_pair["target"]),
+              reference=RasterReference(os.path.abspath(small_pair["reference"])), out=str(out))
     record = run_batch([job], BatchSettings(method="sift"), workers=1, processes=False).records[0]
     assert record["status"] == "failed" and "did not write" in record["message"]
     assert (out / "registered.tif").read_bytes() == b"mine"
@@ -210,8 +211,8 @@ def test_a_batch_row_into_a_folder_of_the_users_files_fails_that_row_only(tmp_pa
 def test_batch_resume_runs_a_pair_again_when_the_request_changed(tmp_path, small_pair):
     from hamta.core import RegisterOptions
 
-    job = Job(target=os.path.abspath(small_pair["target"]), reference=os.path.abspath(small_pair["reference"]),
-              out=str(tmp_path / "pair"))
+    job = Job(target=os.path.abspath(small_pair["target"]),
+              reference=RasterReference(os.path.abspath(small_pair["reference"])), out=str(tmp_path / "pair"))
     first = BatchSettings(method="sift")
     from hamta.core.batch.task import register_job
 

@@ -339,3 +339,29 @@ def test_the_search_area_s_help_gives_the_order_qgis_accepts(provider):
     """qgis_process refuses 'xmin,ymin,xmax,ymax' for an extent parameter; its help shows QGIS's own form."""
     extent = provider.algorithm("registerauto").parameterDefinition("EXTENT")
     assert "xmin,xmax,ymin,ymax [EPSG:code]" in extent.help() and "xmin,ymin,xmax,ymax" not in extent.help()
+
+
+def test_the_batch_resolves_its_reference_layer_once(provider, small_pair, xyz_source, landsat, tmp_path, monkeypatch):
+    from urllib.parse import quote
+
+    from qgis.core import QgsProcessingContext
+
+    import hamta.core.reference as reference_module
+    from hamta.core.reference import RasterReference, ServiceReference
+
+    parse, calls = reference_module.parse_service, []
+    monkeypatch.setattr(reference_module, "parse_service", lambda text: calls.append(text) or parse(text))
+    alg, context = provider.algorithm("batchregister").create(), QgsProcessingContext()
+    targets = [small_pair["target"], small_pair["reference"]]
+    jobs = alg._jobs({"TARGETS": targets, "REFERENCE": small_pair["reference"]}, context, str(tmp_path / "a"))
+    assert [j.reference for j in jobs] == [RasterReference(small_pair["reference"])] * 2 and calls == []
+    layer = QgsRasterLayer(xyz_source, "basemap", "wms")
+    jobs = alg._jobs({"TARGETS": targets, "REFERENCE": layer}, context, str(tmp_path / "b"))
+    assert len(calls) == 1 and all(isinstance(j.reference, ServiceReference) for j in jobs)
+    assert jobs[0].reference is jobs[1].reference
+    source = landsat[0]
+    uri = (f"?crs=EPSG:32618&extent=0,0,1,1&width=1&height=1&formula=%22s@1%22&s:uri={quote(source)}"
+           "&s:provider=gdal")
+    with pytest.raises(QgsProcessingException, match="cannot be read by every pair of a batch"):
+        alg._jobs({"TARGETS": targets, "REFERENCE": QgsRasterLayer(uri, "calculated", "virtualraster")}, context,
+                  str(tmp_path / "c"))
