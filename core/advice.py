@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from typing import List, Optional
 
 RIGID = ("similarity", "linear", "affine")
+KEEP_UNVERIFIED = "Keep unverified results"  # the one name of ``accept_unverified`` in every dialog and message
 
 
 @dataclass(frozen=True)
@@ -55,7 +56,7 @@ def spelled(tip: Advice) -> str:
     from .options import RegisterOptions, cli_flag, option_fields
 
     specs = {f.name: (cli_flag(f, spec), spec.label) for f, spec in option_fields(RegisterOptions)}
-    flag, label = specs.get(tip.option, ("--" + tip.option.replace("_", "-"), "Keep unverified results"))
+    flag, label = specs.get(tip.option, ("--" + tip.option.replace("_", "-"), KEEP_UNVERIFIED))
     return f"{flag}{'' if tip.value is True else f' {tip.value}'} (QGIS: '{label}')"
 
 

@@ -4,72 +4,67 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../plugin/action.py" line="48"/>
+        <location filename="../plugin/action.py" line="50"/>
         <source>Hamta cannot run: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="57"/>
+        <location filename="../plugin/action.py" line="59"/>
         <source>The reference layer &apos;{}&apos; could not be read ({}: {}).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="60"/>
+        <location filename="../plugin/action.py" line="62"/>
         <source>Auto-georeference &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="97"/>
+        <location filename="../plugin/action.py" line="101"/>
         <source>Auto-georeference of &apos;{}&apos; canceled; nothing was added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="102"/>
+        <location filename="../plugin/action.py" line="106"/>
         <source>Open the GCPs in the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="107"/>
-        <source>&apos;{}&apos; was registered, but the independent check did not confirm it ({}). No georeferenced raster was written; see the report, or tick &apos;Keep unverified result&apos; to write it anyway.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="112"/>
+        <location filename="../plugin/action.py" line="117"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="121"/>
+        <location filename="../plugin/action.py" line="142"/>
         <source>{} (georeferenced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="122"/>
+        <location filename="../plugin/action.py" line="144"/>
         <source>{} GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="127"/>
+        <location filename="../plugin/action.py" line="149"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="150"/>
+        <location filename="../plugin/action.py" line="175"/>
         <source>Open report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="159"/>
+        <location filename="../plugin/action.py" line="184"/>
         <source>In the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="159"/>
+        <location filename="../plugin/action.py" line="184"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="160"/>
+        <location filename="../plugin/action.py" line="185"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -114,11 +109,6 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="147"/>
-        <source>Keep unverified result</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../plugin/autogeoref.py" line="148"/>
         <source>Write the georeferenced raster even when the independent check does not confirm the result (it is then marked NOT VERIFIED).</source>
         <translation type="unfinished"></translation>
@@ -154,58 +144,123 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="71"/>
-        <source>Auto-georeference &apos;{}&apos;: starting</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="76"/>
+        <location filename="../plugin/action.py" line="79"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="84"/>
+        <location filename="../plugin/action.py" line="74"/>
         <source>Auto-georeference &apos;{}&apos;: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="101"/>
+        <location filename="../plugin/action.py" line="111"/>
         <source>Details</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="141"/>
-        <source> (error within {:.1f} px)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="142"/>
+        <location filename="../plugin/action.py" line="165"/>
         <source>&apos;{}&apos; is georeferenced and verified{}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="143"/>
+        <location filename="../plugin/action.py" line="168"/>
         <source>&apos;{}&apos; is georeferenced but NOT VERIFIED; check it before use.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="187"/>
+        <location filename="../plugin/action.py" line="250"/>
         <source>&apos;{}&apos; onto &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="190"/>
-        <source>Independent check: {}; {} of {} sites agree; error bound {} px (tolerance {:g} px)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="193"/>
+        <location filename="../plugin/action.py" line="261"/>
         <source>Method: {}; {} GCPs; transformation: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="196"/>
+        <location filename="../plugin/action.py" line="265"/>
         <source>Time: {:.1f} s</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="75"/>
+        <source>starting</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="112"/>
+        <source>Keep anyway</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="113"/>
+        <source>Not verified: &apos;{}&apos; was not placed with confidence, so nothing was added.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="130"/>
+        <source>Keep &apos;{}&apos; (not verified)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="134"/>
+        <source>Keeping &apos;{}&apos;: {}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="142"/>
+        <source>{} (georeferenced, NOT VERIFIED)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="165"/>
+        <source> (error within {})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="218"/>
+        <source>{:.1f} m on the ground</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="218"/>
+        <source>{:.2f} m on the ground</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="221"/>
+        <source>{:.1f} px of &apos;{}&apos;</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="252"/>
+        <source>Independent check: {}; {} of {} sites agree; error within {} (tolerance {})</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="259"/>
+        <source>What may help:</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="267"/>
+        <source>Kept after the run: the outputs were written in {:.1f} s.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="278"/>
+        <source>&apos;Keep anyway&apos; here, or &apos;{}&apos; in the dialog: {}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="281"/>
+        <source>Search area</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="147"/>
+        <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -285,7 +340,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="147"/>
+        <location filename="../processing/batch_algorithm.py" line="146"/>
         <source>Batch stopped on an unexpected error ({}: {}).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -451,17 +506,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="106"/>
+        <location filename="../processing/register_algorithm.py" line="110"/>
         <source>Registration</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="121"/>
+        <location filename="../processing/register_algorithm.py" line="125"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="128"/>
+        <location filename="../processing/register_algorithm.py" line="132"/>
         <source>Target raster (to georeference)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -511,67 +566,67 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="139"/>
+        <location filename="../processing/register_algorithm.py" line="143"/>
         <source>Georeferenced raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="140"/>
+        <location filename="../processing/register_algorithm.py" line="144"/>
         <source>GCP points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>GCP points (*.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="145"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="145"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>VRT (*.vrt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="148"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>Report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="148"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>JSON (*.json)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="155"/>
+        <location filename="../processing/register_algorithm.py" line="159"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="156"/>
+        <location filename="../processing/register_algorithm.py" line="160"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="157"/>
+        <location filename="../processing/register_algorithm.py" line="161"/>
         <source>Number of GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="187"/>
+        <location filename="../processing/register_algorithm.py" line="191"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="243"/>
+        <location filename="../processing/register_algorithm.py" line="247"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -601,27 +656,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="153"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>Verdict of the independent check</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="158"/>
         <source>Method that produced the result</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="246"/>
+        <location filename="../processing/register_algorithm.py" line="250"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="299"/>
-        <source>Verified by an independent check: {} of {} sites agree; estimated error within {:.2f} px.</source>
+        <location filename="../processing/register_algorithm.py" line="303"/>
+        <source>Verified by an independent check: {} of {} sites agree; estimated error within {}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="302"/>
+        <location filename="../processing/register_algorithm.py" line="306"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1241,22 +1296,22 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>HTML files (*.html)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="233"/>
+        <location filename="../processing/register_algorithm.py" line="237"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="252"/>
+        <location filename="../processing/register_algorithm.py" line="256"/>
         <source>Invalid parameter: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="258"/>
+        <location filename="../processing/register_algorithm.py" line="262"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1331,7 +1386,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="131"/>
+        <location filename="../processing/register_algorithm.py" line="135"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1346,17 +1401,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>Quality report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="277"/>
+        <location filename="../processing/register_algorithm.py" line="281"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="310"/>
+        <location filename="../processing/register_algorithm.py" line="314"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1396,7 +1451,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="115"/>
+        <location filename="../processing/register_algorithm.py" line="119"/>
         <source>References: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1626,7 +1681,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="129"/>
+        <location filename="../processing/register_algorithm.py" line="133"/>
         <source>Reference raster or map layer (XYZ, WMS...)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1646,12 +1701,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="286"/>
+        <location filename="../processing/register_algorithm.py" line="290"/>
         <source>on</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="304"/>
+        <location filename="../processing/register_algorithm.py" line="308"/>
         <source>May help: {} ({}).</source>
         <translation type="unfinished"></translation>
     </message>

@@ -4,52 +4,52 @@
 <context>
     <name>@default</name>
     <message>
-        <location filename="../plugin/action.py" line="48"/>
+        <location filename="../plugin/action.py" line="50"/>
         <source>Hamta cannot run: {}</source>
         <translation>همتا اجرا نمی‌شود: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="57"/>
+        <location filename="../plugin/action.py" line="59"/>
         <source>The reference layer &apos;{}&apos; could not be read ({}: {}).</source>
         <translation>لایهٔ مرجع «{}» خوانده نشد ({}: {}).</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="60"/>
+        <location filename="../plugin/action.py" line="62"/>
         <source>Auto-georeference &apos;{}&apos;</source>
         <translation>زمین‌مرجع‌سازی خودکار «{}»</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="97"/>
+        <location filename="../plugin/action.py" line="101"/>
         <source>Auto-georeference of &apos;{}&apos; canceled; nothing was added.</source>
         <translation>زمین‌مرجع‌سازی خودکار «{}» لغو شد؛ چیزی افزوده نشد.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="102"/>
+        <location filename="../plugin/action.py" line="106"/>
         <source>Open the GCPs in the Georeferencer</source>
         <translation>باز کردن نقاط کنترل در زمین‌مرجع‌ساز</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="107"/>
         <source>&apos;{}&apos; was registered, but the independent check did not confirm it ({}). No georeferenced raster was written; see the report, or tick &apos;Keep unverified result&apos; to write it anyway.</source>
-        <translation>«{}» ثبت شد، اما بررسی مستقل آن را تأیید نکرد ({}). رستر زمین‌مرجع نوشته نشد؛ گزارش را ببینید، یا «نگه داشتن نتیجهٔ تأییدنشده» را بزنید تا به هر حال نوشته شود.</translation>
+        <translation type="obsolete">«{}» ثبت شد، اما بررسی مستقل آن را تأیید نکرد ({}). رستر زمین‌مرجع نوشته نشد؛ گزارش را ببینید، یا «نگه داشتن نتیجهٔ تأییدنشده» را بزنید تا به هر حال نوشته شود.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="112"/>
+        <location filename="../plugin/action.py" line="117"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation>همتا با خطایی پیش‌بینی‌نشده متوقف شد ({}: {})؛ چیزی افزوده نشد. لطفاً آن را گزارش کنید (جزئیات در گزارش پیام‌ها است).</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="121"/>
+        <location filename="../plugin/action.py" line="142"/>
         <source>{} (georeferenced)</source>
         <translation>{} (زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="122"/>
+        <location filename="../plugin/action.py" line="144"/>
         <source>{} GCPs</source>
         <translation>نقاط کنترل {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="127"/>
+        <location filename="../plugin/action.py" line="149"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation>خروجی «{}» بارگذاری نشد.</translation>
     </message>
@@ -74,22 +74,22 @@
         <translation type="obsolete">بررسی نشده</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="150"/>
+        <location filename="../plugin/action.py" line="175"/>
         <source>Open report</source>
         <translation>باز کردن گزارش</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="159"/>
+        <location filename="../plugin/action.py" line="184"/>
         <source>In the Georeferencer</source>
         <translation>در زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="159"/>
+        <location filename="../plugin/action.py" line="184"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation>در رستر ◂ زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="160"/>
+        <location filename="../plugin/action.py" line="185"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation>{}، رستر «{}» را باز کنید (پرونده ◂ باز کردن رستر…)، سپس پرونده ◂ بارگذاری نقاط کنترل… و مسیر پروندهٔ نقاط کنترل را که اکنون در حافظهٔ موقت است بچسبانید: {}</translation>
     </message>
@@ -136,7 +136,7 @@
     <message>
         <location filename="../plugin/autogeoref.py" line="147"/>
         <source>Keep unverified result</source>
-        <translation>نگه داشتن نتیجهٔ تأییدنشده</translation>
+        <translation type="obsolete">نگه داشتن نتیجهٔ تأییدنشده</translation>
     </message>
     <message>
         <location filename="../plugin/autogeoref.py" line="148"/>
@@ -176,57 +176,137 @@
     <message>
         <location filename="../plugin/action.py" line="71"/>
         <source>Auto-georeference &apos;{}&apos;: starting</source>
-        <translation>زمین‌مرجع‌سازی خودکار '{}': آغاز</translation>
+        <translation type="obsolete">زمین‌مرجع‌سازی خودکار '{}': آغاز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="76"/>
+        <location filename="../plugin/action.py" line="79"/>
         <source>Cancel</source>
         <translation>لغو</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="84"/>
+        <location filename="../plugin/action.py" line="74"/>
         <source>Auto-georeference &apos;{}&apos;: {}</source>
         <translation>زمین‌مرجع‌سازی خودکار '{}': {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="101"/>
+        <location filename="../plugin/action.py" line="111"/>
         <source>Details</source>
         <translation>جزئیات</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="141"/>
         <source> (error within {:.1f} px)</source>
-        <translation> (خطا حداکثر {:.1f} پیکسل)</translation>
+        <translation type="obsolete"> (خطا حداکثر {:.1f} پیکسل)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="142"/>
+        <location filename="../plugin/action.py" line="165"/>
         <source>&apos;{}&apos; is georeferenced and verified{}.</source>
         <translation>'{}' زمین‌مرجع شد و درستی آن تأیید شد{}.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="143"/>
+        <location filename="../plugin/action.py" line="168"/>
         <source>&apos;{}&apos; is georeferenced but NOT VERIFIED; check it before use.</source>
         <translation>'{}' زمین‌مرجع شد اما تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="187"/>
+        <location filename="../plugin/action.py" line="250"/>
         <source>&apos;{}&apos; onto &apos;{}&apos;</source>
         <translation>'{}' روی '{}'</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="190"/>
         <source>Independent check: {}; {} of {} sites agree; error bound {} px (tolerance {:g} px)</source>
-        <translation>بررسی مستقل: {}؛ {} از {} محل موافق‌اند؛ کران خطا {} پیکسل (رواداری {:g} پیکسل)</translation>
+        <translation type="obsolete">بررسی مستقل: {}؛ {} از {} محل موافق‌اند؛ کران خطا {} پیکسل (رواداری {:g} پیکسل)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="193"/>
+        <location filename="../plugin/action.py" line="261"/>
         <source>Method: {}; {} GCPs; transformation: {}</source>
         <translation>روش: {}؛ {} نقطهٔ کنترل زمینی؛ تبدیل: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="196"/>
+        <location filename="../plugin/action.py" line="265"/>
         <source>Time: {:.1f} s</source>
         <translation>زمان: {:.1f} ثانیه</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="75"/>
+        <source>starting</source>
+        <translation>آغاز</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="112"/>
+        <source>Keep anyway</source>
+        <translation>به هر حال نگه دار</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="113"/>
+        <source>Not verified: &apos;{}&apos; was not placed with confidence, so nothing was added.</source>
+        <translation>تأیید نشد: جای «{}» با اطمینان یافته نشد، پس چیزی افزوده نشد.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="130"/>
+        <source>Keep &apos;{}&apos; (not verified)</source>
+        <translation>نگه داشتن «{}» (تأییدنشده)</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="134"/>
+        <source>Keeping &apos;{}&apos;: {}</source>
+        <translation>نگه داشتن «{}»: {}</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="142"/>
+        <source>{} (georeferenced, NOT VERIFIED)</source>
+        <translation>{} (زمین‌مرجع، تأییدنشده)</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="165"/>
+        <source> (error within {})</source>
+        <translation> (خطا حداکثر {})</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="218"/>
+        <source>{:.1f} m on the ground</source>
+        <translation>{:.1f} متر روی زمین</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="218"/>
+        <source>{:.2f} m on the ground</source>
+        <translation>{:.2f} متر روی زمین</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="221"/>
+        <source>{:.1f} px of &apos;{}&apos;</source>
+        <translation>{:.1f} پیکسلِ «{}»</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="252"/>
+        <source>Independent check: {}; {} of {} sites agree; error within {} (tolerance {})</source>
+        <translation>بررسی مستقل: {}؛ {} از {} محل موافق‌اند؛ خطا حداکثر {} (رواداری {})</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="259"/>
+        <source>What may help:</source>
+        <translation>آنچه ممکن است کمک کند:</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="267"/>
+        <source>Kept after the run: the outputs were written in {:.1f} s.</source>
+        <translation>پس از اجرا نگه داشته شد: خروجی‌ها در {:.1f} ثانیه نوشته شدند.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="278"/>
+        <source>&apos;Keep anyway&apos; here, or &apos;{}&apos; in the dialog: {}</source>
+        <translation>«به هر حال نگه دار» در همین‌جا، یا «{}» در پنجره: {}</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="281"/>
+        <source>Search area</source>
+        <translation>محدودهٔ جست‌وجو</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="147"/>
+        <source>Keep unverified results</source>
+        <translation>نگه‌داشتن نتایج تأییدنشده</translation>
     </message>
 </context>
 <context>
@@ -305,7 +385,7 @@
         <translation>رسترهای هدف و یک رستر مرجع، یا یک فهرست کار را انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../processing/batch_algorithm.py" line="147"/>
+        <location filename="../processing/batch_algorithm.py" line="146"/>
         <source>Batch stopped on an unexpected error ({}: {}).</source>
         <translation>اجرای دسته با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {}).</translation>
     </message>
@@ -473,17 +553,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>نادیده گرفته شود</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="106"/>
+        <location filename="../processing/register_algorithm.py" line="110"/>
         <source>Registration</source>
         <translation>ثبت تصویر</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="121"/>
+        <location filename="../processing/register_algorithm.py" line="125"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation>زمین‌مرجع‌سازی,هم‌ثبت‌سازی,ثبت,نقطه کنترل,تطابق,هم‌ترازی,تبدیل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="128"/>
+        <location filename="../processing/register_algorithm.py" line="132"/>
         <source>Target raster (to georeference)</source>
         <translation>رستر هدف (برای زمین‌مرجع‌سازی)</translation>
     </message>
@@ -533,67 +613,67 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>بذر تصادفی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="139"/>
+        <location filename="../processing/register_algorithm.py" line="143"/>
         <source>Georeferenced raster</source>
         <translation>رستر زمین‌مرجع‌شده</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="140"/>
+        <location filename="../processing/register_algorithm.py" line="144"/>
         <source>GCP points</source>
         <translation>نقاط کنترل زمینی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation>پرونده نقاط کنترل برای Georeferencer کیوجی‌آی‌اس</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="142"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>GCP points (*.points)</source>
         <translation>نقاط کنترل (*.points)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="145"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation>تصویر هدف همراه نقاط کنترل، بدون بازنمونه‌برداری (VRT)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="145"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>VRT (*.vrt)</source>
         <translation>VRT (*.vrt)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="148"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>Report</source>
         <translation>گزارش</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="148"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>JSON (*.json)</source>
         <translation>JSON (*.json)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="155"/>
+        <location filename="../processing/register_algorithm.py" line="159"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation>RMSE نقاط کنترل (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="156"/>
+        <location filename="../processing/register_algorithm.py" line="160"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation>RMS به روش حذف تک‌نقطه (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="157"/>
+        <location filename="../processing/register_algorithm.py" line="161"/>
         <source>Number of GCPs</source>
         <translation>تعداد نقاط کنترل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="187"/>
+        <location filename="../processing/register_algorithm.py" line="191"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation>{} باید پرونده رستری قابل خواندن با GDAL باشد، نه لایه‌ای از نوع «{}».</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="243"/>
+        <location filename="../processing/register_algorithm.py" line="247"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation>ثبت تصویر لغو شد؛ هیچ خروجی‌ای نوشته نشد.</translation>
     </message>
@@ -623,27 +703,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>ثبت تصویر SAR روی تصویر نوری</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="153"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>Verdict of the independent check</source>
         <translation>رأی بررسی مستقل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="158"/>
         <source>Method that produced the result</source>
         <translation>روشی که نتیجه را به دست داد</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="246"/>
+        <location filename="../processing/register_algorithm.py" line="250"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation>ثبت تصویر تأیید نشد: {}. هیچ خروجی زمین‌مرجع‌شده‌ای نوشته نشد؛ برای نوشتن آن در هر صورت، گزینهٔ «نگه‌داشتن نتایج تأییدنشده» را فعال کنید.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="299"/>
-        <source>Verified by an independent check: {} of {} sites agree; estimated error within {:.2f} px.</source>
-        <translation>تأییدشده با بررسی مستقل: {} محل از {} محل هم‌خوان‌اند؛ خطای برآوردشده حداکثر {:.2f} px.</translation>
+        <location filename="../processing/register_algorithm.py" line="303"/>
+        <source>Verified by an independent check: {} of {} sites agree; estimated error within {}.</source>
+        <translation>تأییدشده با بررسی مستقل: {} محل از {} محل هم‌خوان‌اند؛ خطای برآوردشده حداکثر {}.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="302"/>
+        <location filename="../processing/register_algorithm.py" line="306"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation>تأیید نشد ({}): {}</translation>
     </message>
@@ -1263,22 +1343,22 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل‌های بیرون از هدف</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>HTML files (*.html)</source>
         <translation>پرونده‌های HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="233"/>
+        <location filename="../processing/register_algorithm.py" line="237"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation>نقاط کنترل در یک GeoPackage نوشته می‌شوند: یک پروندهٔ ‎.gpkg انتخاب کنید (داده‌شده: «{}»).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="252"/>
+        <location filename="../processing/register_algorithm.py" line="256"/>
         <source>Invalid parameter: {}</source>
         <translation>پارامتر نامعتبر: {}</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="258"/>
+        <location filename="../processing/register_algorithm.py" line="262"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation>همتا با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {})؛ هیچ خروجی‌ای نوشته نشد. لطفاً آن را گزارش کنید.</translation>
     </message>
@@ -1358,7 +1438,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>چارک سوم</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="131"/>
+        <location filename="../processing/register_algorithm.py" line="135"/>
         <source>Keep unverified results</source>
         <translation>نگه‌داشتن نتایج تأییدنشده</translation>
     </message>
@@ -1373,17 +1453,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل به پیکسل (مرجع بدون زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="150"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>Quality report (HTML)</source>
         <translation>گزارش کیفیت (HTML)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="277"/>
+        <location filename="../processing/register_algorithm.py" line="281"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation>{} (گزینهٔ «{}» را فعال کنید).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="310"/>
+        <location filename="../processing/register_algorithm.py" line="314"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation>{}؛ RMSE گزارش‌شده از خود برازش {:.3f} px، RMS حذف تک‌نقطه {} px (باقی‌مانده‌های برازش، نه دقت آن).</translation>
     </message>
@@ -1418,7 +1498,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>میانگین</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="115"/>
+        <location filename="../processing/register_algorithm.py" line="119"/>
         <source>References: {}</source>
         <translation>مراجع: {}</translation>
     </message>
@@ -1653,7 +1733,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>خالی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="129"/>
+        <location filename="../processing/register_algorithm.py" line="133"/>
         <source>Reference raster or map layer (XYZ, WMS...)</source>
         <translation>رستر یا لایهٔ نقشهٔ مرجع (XYZ، WMS...)</translation>
     </message>
@@ -1673,12 +1753,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>همهٔ مرجع؛ برای سرویس نقشه الزامی است</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="286"/>
+        <location filename="../processing/register_algorithm.py" line="290"/>
         <source>on</source>
         <translation>روشن</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="304"/>
+        <location filename="../processing/register_algorithm.py" line="308"/>
         <source>May help: {} ({}).</source>
         <translation>شاید کمک کند: {} ({}).</translation>
     </message>

@@ -2,14 +2,16 @@
 ends add the results to the project and say in the message bar what happened."""
 from __future__ import annotations
 
+import dataclasses
 import traceback
+from typing import Optional
 
 from qgis.core import Qgis, QgsApplication, QgsMessageLog, QgsProject, QgsRasterLayer, QgsVectorLayer
 from qgis.PyQt.QtCore import QUrl
 from qgis.PyQt.QtGui import QDesktopServices
 from qgis.PyQt.QtWidgets import QAction, QApplication, QMessageBox, QProgressBar, QPushButton
 
-from .task import CANCELED, CRASHED, UNVERIFIED, WRITTEN, RegisterTask, tr
+from .task import CANCELED, CRASHED, UNVERIFIED, WRITTEN, KeepTask, RegisterTask, tr
 
 TITLE = "Hamta"
 GEOREFERENCER = "mActionShowGeoreferencer"  # the object name of QGIS's Raster > Georeferencer action
@@ -65,11 +67,12 @@ class AutoGeoreference:
         QgsApplication.taskManager().addTask(task)
         return task
 
-    def progress_item(self, task):
-        """A message bar item showing ``task``'s stage ('fetching tiles 42/99', 'locating the target…') and
-        progress, with a Cancel button, until it ends; updated in the main thread through the task manager."""
-        item = self.iface.messageBar().createMessage(TITLE, tr("Auto-georeference '{}': starting").format(
-            task.job.target_name))
+    def progress_item(self, task, line=None):
+        """A message bar item showing ``task``'s stage ('fetching tiles 42/99', 'locating the target…') on one
+        line and its progress, with a Cancel button, until it ends; updated in the main thread through the task
+        manager. ``line`` ('Auto-georeference '{}': {}') puts the target's name and the stage together."""
+        line = line or tr("Auto-georeference '{}': {}")
+        item = self.iface.messageBar().createMessage(TITLE, line.format(task.job.target_name, tr("starting")))
         bar = QProgressBar(item)
         bar.setRange(0, 100)
         item.layout().addWidget(bar)
@@ -81,32 +84,34 @@ class AutoGeoreference:
         def update(task_id, progress, task=task):
             if task in self.tasks and QgsApplication.taskManager().taskId(task) == task_id:
                 bar.setValue(int(progress))
-                item.setText(tr("Auto-georeference '{}': {}").format(task.job.target_name, tr(task.stage)))
+                item.setText(line.format(task.job.target_name, tr(task.stage)))
 
         QgsApplication.taskManager().progressChanged.connect(update)
         item.disconnect_update = lambda: QgsApplication.taskManager().progressChanged.disconnect(update)
         return item
 
     def show_outcome(self, task):
-        """In the main thread, once ``task`` has ended."""
+        """In the main thread, once ``task`` has ended: one short line in plain words, the rest one click
+        away (Details)."""
         if task in self.tasks:
             self.tasks.remove(task)
         self.close_progress(task)
-        job, written = task.job, task.written
+        job, written, ended = task.job, task.written, Ended.of(task)  # QGIS deletes the task soon: keep what it says
         if task.outcome == CANCELED:
             self.push(tr("Auto-georeference of '{}' canceled; nothing was added.").format(job.target_name), Qgis.Info,
                       duration=10)
         elif task.outcome == WRITTEN:
-            self.add_layers(job, written)
-            buttons = [(tr("Details"), lambda: self.show_details(job, task.result))] + self.report_button(written) + [
+            self.add_layers(job, written, task.result.verified)
+            buttons = [(tr("Details"), lambda: self.show_details(ended))] + self.report_button(written) + [
                 (tr("Open the GCPs in the Georeferencer"), lambda: self.open_georeferencer(job, written["points"]))]
             self.push(self.success_text(job, task.result), Qgis.Success if task.result.verified else Qgis.Warning,
                       buttons)
         elif task.outcome == UNVERIFIED:
-            reasons = "; ".join(task.result.verification.reasons)
-            self.push(tr("'{}' was registered, but the independent check did not confirm it ({}). No georeferenced "
-                         "raster was written; see the report, or tick 'Keep unverified result' to write it anyway.")
-                      .format(job.target_name, reasons), Qgis.Warning, self.report_button(written))
+            item = None
+            buttons = [(tr("Details"), lambda: self.show_details(ended)),
+                       (tr("Keep anyway"), lambda: self.keep(ended, item))] + self.report_button(written)
+            item = self.push(tr("Not verified: '{}' was not placed with confidence, so nothing was added.").format(
+                job.target_name), Qgis.Warning, buttons)
         elif task.outcome == CRASHED:
             QgsMessageLog.logMessage(task.trace, TITLE, Qgis.Critical)
             self.push(tr("Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the "
@@ -115,10 +120,27 @@ class AutoGeoreference:
         else:
             self.push(str(task.error), Qgis.Critical)
 
-    def add_layers(self, job, written):
-        """The warped raster, then its GCPs above it (their style is in the GeoPackage)."""
+    def keep(self, ended, item=None):
+        """Write the outputs of an unverified result (``ended``: an :class:`Ended` run) after all, without
+        searching again, marked NOT VERIFIED, and add them like a run's; its message (``item``) goes.
+        Returns the :class:`KeepTask`."""
+        if item is not None:
+            self.iface.messageBar().popWidget(item)
+        job = ended.job
+        keeping = KeepTask(tr("Keep '{}' (not verified)").format(job.target_name), ended.result, job.folder,
+                           job.options, run_s=ended.elapsed_s, done=self.show_outcome)
+        keeping.job = job
+        self.tasks.append(keeping)
+        keeping.bar_item = self.progress_item(keeping, tr("Keeping '{}': {}"))
+        QgsApplication.taskManager().addTask(keeping)
+        return keeping
+
+    def add_layers(self, job, written, verified=True):
+        """The warped raster, then its GCPs above it (their style is in the GeoPackage); a result the check
+        did not verify says so in its name."""
         project = QgsProject.instance()
-        raster = QgsRasterLayer(written["raster"], tr("{} (georeferenced)").format(job.target_name))
+        name = tr("{} (georeferenced)") if verified else tr("{} (georeferenced, NOT VERIFIED)")
+        raster = QgsRasterLayer(written["raster"], name.format(job.target_name))
         gcps = QgsVectorLayer(f"{written['gpkg']}|layername=gcps", tr("{} GCPs").format(job.target_name), "ogr")
         for layer in (raster, gcps):
             if layer.isValid():
@@ -135,15 +157,18 @@ class AutoGeoreference:
 
     @staticmethod
     def success_text(job, result):
-        """One line: what happened and how good it is; the rest is behind 'Details'."""
+        """One line: what happened and how good it is, the error on the ground and in the target's own
+        pixels; the rest is behind 'Details'."""
         v = result.verification
         if result.verified:
-            bound = "" if v.error_bound_px is None else tr(" (error within {:.1f} px)").format(v.error_bound_px)
-            return tr("'{}' is georeferenced and verified{}.").format(job.target_name, bound)
+            bound = error_text(job, result, v.error_bound_px)
+            return tr("'{}' is georeferenced and verified{}.").format(job.target_name,
+                                                                       tr(" (error within {})").format(bound)
+                                                                       if bound else "")
         return tr("'{}' is georeferenced but NOT VERIFIED; check it before use.").format(job.target_name)
 
-    def show_details(self, job, result):
-        QMessageBox.information(self.iface.mainWindow(), TITLE, details_text(job, result))
+    def show_details(self, ended):
+        QMessageBox.information(self.iface.mainWindow(), TITLE, details_text(ended))
 
     def report_button(self, written):
         html = written.get("html")
@@ -180,18 +205,81 @@ class AutoGeoreference:
 
 
 
-def details_text(job, result) -> str:
-    """What a user may want after the one line: the check's figures, the method, the GCPs, where the
-    target was found and how long it took."""
+def error_text(job, result, value_px) -> str:
+    """A length in reference px as a person reads it: '1.4 m on the ground, 0.6 px of 'scan'' (each
+    part when known), else in the reference's pixels; '' when missing."""
+    from ..core.outputs.scale import ground_metres, reference_px_name, target_px
+
+    if value_px is None or value_px != value_px:
+        return ""
+    parts = []
+    metres, pixels = ground_metres(result, value_px), target_px(result, value_px)
+    if metres is not None:
+        parts.append(tr("{:.1f} m on the ground").format(metres) if metres >= 0.95 else
+                     tr("{:.2f} m on the ground").format(metres))
+    if pixels is not None:
+        parts.append(tr("{:.1f} px of '{}'").format(pixels, job.target_name))
+    if not parts:
+        parts.append(f"{value_px:.1f} {reference_px_name(result)}")
+    return ", ".join(parts)
+
+
+@dataclasses.dataclass(frozen=True)
+class Ended:
+    """What a task that ended says, kept from it (QGIS deletes a finished task): its ``job``, ``result``,
+    ``written`` files, the whole run's time ``elapsed_s`` and, for a result kept after its run, the
+    time its outputs took to write (``write_s``)."""
+
+    job: object
+    result: object
+    written: dict
+    elapsed_s: Optional[float] = None
+    write_s: Optional[float] = None
+
+    @classmethod
+    def of(cls, task) -> "Ended":
+        return cls(task.job, task.result, dict(task.written), getattr(task, "elapsed_s", None),
+                   getattr(task, "write_s", None))
+
+
+def details_text(ended: Ended) -> str:
+    """What a user may want after the one line: the verdict and why, the check's figures, what may help,
+    the method, the GCPs, where the target was found and how long the whole run took."""
+    job, result = ended.job, ended.result
     v = result.verification
     lines = [tr("'{}' onto '{}'").format(job.target_name, job.reference.name())]
     if v is not None:
-        bound = "–" if v.error_bound_px is None else f"{v.error_bound_px:.2f}"
-        lines.append(tr("Independent check: {}; {} of {} sites agree; error bound {} px (tolerance {:g} px)").format(
-            tr(v.verdict), v.n_agree, v.n_sites, bound, v.tolerance_px))
+        lines.append(tr("Independent check: {}; {} of {} sites agree; error within {} (tolerance {})").format(
+            tr(v.verdict), v.n_agree, v.n_sites, error_text(job, result, v.error_bound_px) or "–",
+            error_text(job, result, v.tolerance_px)))
         lines += [f"  – {reason}" for reason in v.reasons]
+    if not result.verified:
+        from ..core.advice import advice  # the engine: not when the plugin loads
+
+        lines.append(tr("What may help:"))
+        lines += [f"  – {tip_text(tip)}" for tip in advice(result)]
     lines.append(tr("Method: {}; {} GCPs; transformation: {}").format(result.method, result.stats.n_gcps,
                                                                        result.options.get("model") or "–"))
     lines += [f"  – {note}" for note in result.notes]
-    lines.append(tr("Time: {:.1f} s").format(result.timings.total))
+    run_s = result.timings.total if ended.elapsed_s is None else ended.elapsed_s  # the whole run, when timed
+    lines.append(tr("Time: {:.1f} s").format(run_s))
+    if ended.write_s is not None:
+        lines.append(tr("Kept after the run: the outputs were written in {:.1f} s.").format(ended.write_s))
     return "\n".join(lines)
+
+
+def tip_text(tip) -> str:
+    """An :class:`hamta.core.advice.Advice` as this dialog and message bar name it."""
+    from ..core.advice import KEEP_UNVERIFIED
+    from ..core.options import RegisterOptions, option_fields
+    from .autogeoref import option_tr
+
+    if tip.option == "accept_unverified":
+        return tr("'Keep anyway' here, or '{}' in the dialog: {}").format(tr(KEEP_UNVERIFIED), tip.why)
+    labels = {f.name: spec.label for f, spec in option_fields(RegisterOptions)}
+    if tip.option == "extent":
+        label = tr("Search area")
+    else:
+        label = option_tr(labels.get(tip.option, tip.option))
+    value = "" if tip.value is True or tip.option == "extent" else f" = {tip.value}"
+    return f"'{label}'{value}: {tip.why}"

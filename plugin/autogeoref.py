@@ -144,7 +144,7 @@ class AutoGeoreferenceDialog(QDialog):
         self.folder.setStorageMode(QgsFileWidget.GetDirectory)
         self.folder.setToolTip(tr("A folder for the warped raster, the GCPs (GeoPackage and .points) and the "
                                   "reports; files of an earlier run there are replaced."))
-        self.keep = QCheckBox(tr("Keep unverified result"), self)
+        self.keep = QCheckBox(tr("Keep unverified results"), self)
         self.keep.setToolTip(tr("Write the georeferenced raster even when the independent check does not confirm "
                                 "the result (it is then marked NOT VERIFIED)."))
         form.addRow(tr("Output folder"), self.folder)

@@ -29,7 +29,9 @@ from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
 from ..core.methods import get_method
 from ..core.options import LABEL_CHARS, option_fields, resolve_options
 from ..core.outcome import attempt_lines
+from ..core.outputs.scale import length_text
 from ..core.outputs.tags import counts_text, pixel_mode_text, unknown_crs_text
+from ..core.progress import stage_name
 from .catalogue import AUTO_ALGORITHM
 from .help import help_url
 from .mapping import method_parameter_name, method_values, register_settings
@@ -50,15 +52,17 @@ def short_label(text: str, name: str) -> str:
 
 
 def feedback_progress(feedback):
-    """A ``progress(fraction, message)`` callback reporting to Processing ``feedback``; each stage's
-    message is logged once, not at every step of it."""
+    """A ``progress(fraction, message)`` callback reporting to Processing ``feedback``; each stage is
+    logged once, not at every step of it: 'fetching tiles 3/16' and 'fetching tiles 4/16' are one line,
+    'fetching tiles' (see :func:`hamta.core.progress.stage_name`)."""
     last = [None]
 
     def progress(fraction, message):
         feedback.setProgress(100.0 * fraction)
-        if message and message != last[0]:
-            last[0] = message
-            feedback.setProgressText(message)
+        stage = stage_name(message)
+        if stage and stage != last[0]:
+            last[0] = stage
+            feedback.setProgressText(stage)
     return progress
 
 
@@ -297,7 +301,7 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         v = result.verification
         if v.verified:
             feedback.pushInfo(self.tr("Verified by an independent check: {} of {} sites agree; estimated error within "
-                                      "{:.2f} px.").format(v.n_agree, v.n_sites, v.error_bound_px))
+                                      "{}.").format(v.n_agree, v.n_sites, length_text(result, v.error_bound_px)))
         else:
             feedback.reportError(self.tr("NOT VERIFIED ({}): {}").format(v.verdict, "; ".join(v.reasons)))
             for tip in advice(result):

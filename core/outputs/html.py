@@ -128,7 +128,7 @@ def _page(result, ref: Preview, tgt: Preview, warped: np.ndarray, warped_ok: np.
     parts = [
         "<!DOCTYPE html><html lang=en><head><meta charset=utf-8>",
         f"<title>Hamta report: {_e(name_t)} onto {_e(name_r)}</title><style>{CSS}</style></head><body><main>",
-        _header(result, name_t, name_r, scale),
+        _header(result, name_t, name_r, scale, outputs or {}),
         _facts(result, scale, outputs, written),
         _gcp_section(result, ref, tgt),
         _residual_section(result, ref),
@@ -152,12 +152,19 @@ def _iso(when: datetime) -> str:
     return when.astimezone(timezone.utc).replace(tzinfo=None).isoformat(timespec="seconds") + "Z"
 
 
-def _header(result, name_t: str, name_r: str, scale: Optional[MapScale]) -> str:
+KEPT = ("Kept anyway ('Keep unverified results'): the outputs were written although the check did not confirm "
+        "them, and each is marked NOT VERIFIED; look at the overlays below before using them.")
+
+
+def _header(result, name_t: str, name_r: str, scale: Optional[MapScale], outputs: Mapping[str, str]) -> str:
     v = result.verification
     verdict = "not checked" if v is None else v.verdict
     fg, bg = VERDICT_CSS.get(verdict, VERDICT_CSS["not checked"])
     reasons = "" if v is None or not v.reasons else "<ul>" + "".join(f"<li>{_e(r)}</li>" for r in v.reasons) + "</ul>"
-    tips = advice(result)
+    kept = v is not None and not v.verified and "raster" in outputs
+    if kept:
+        reasons += f"<div>{_e(KEPT)}</div>"
+    tips = [t for t in advice(result) if not (kept and t.option == "accept_unverified")]
     if tips:
         reasons += "<div>What may help:</div><ul>" + "".join(
             f"<li><code>{_e(spelled(t))}</code>: {_e(t.why)}</li>" for t in tips) + "</ul>"
@@ -191,6 +198,10 @@ def _facts(result, scale: Optional[MapScale], outputs: Mapping[str, str], writte
     else:
         crs = _e(scale.crs) + f" · unit: {_e(scale.unit_name)}"
         ref_size = _sizes(axis_sizes(ref), scale.unit) + " per px"
+        if scale.ground is not None:
+            ground = tuple(size * scale.ground for size in axis_sizes(ref))
+            ref_size = (_sizes(ground, " m") + f" per px on the ground at {_e(_latitude(scale.latitude))} ("
+                        + _sizes(axis_sizes(ref), " Web Mercator m") + ")")
     if tgt.georeferenced and tgt.crs is not None:
         t_crs, t_unit = describe_crs(tgt.crs)
         t_sym = MapScale(t_crs, t_unit, tgt.pixel_size).unit
@@ -203,8 +214,13 @@ def _facts(result, scale: Optional[MapScale], outputs: Mapping[str, str], writte
         t_reg = "–"
     elif scale is None:
         t_reg = _e(f"{k:.4g} reference px per target px")
+    elif scale.ground is None:
+        t_reg = f"{scale.px(k)} per px ({_e(f'{k:.4g}')} {_e(scale.px_name)} per target px, at the target centre)"
     else:
-        t_reg = f"{scale.px(k)} per px ({_e(f'{k:.4g}')} reference px per target px, at the target centre)"
+        size = k * scale.pixel_size
+        t_reg = (_sizes((size * scale.ground,) * 2, " m") + " per px on the ground ("
+                 + _sizes((size,) * 2, " Web Mercator m")
+                 + f"; {_e(f'{k:.4g}')} {_e(scale.px_name)} per target px, at the target centre)")
     rmse = result.stats.rmse_px
     rows = [("reference CRS", crs), ("reference pixel size", ref_size),
             ("target pixel size, own georeferencing", t_own), ("target pixel size, as registered", t_reg),
@@ -219,6 +235,11 @@ def _facts(result, scale: Optional[MapScale], outputs: Mapping[str, str], writte
                         for kind, path in outputs.items())
         rows.append(("files written", f"<ul class=files>{items}</ul>"))
     return "<div class=facts>" + _rows(rows, numeric=False) + "</div>"
+
+
+def _latitude(degrees: float) -> str:
+    """``'53.0° N'``, ``'33.9° S'``."""
+    return f"{abs(degrees):.1f}° {'N' if degrees >= 0 else 'S'}"
 
 
 def _sizes(sizes: Tuple[float, float], unit: str) -> str:

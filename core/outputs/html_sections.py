@@ -135,7 +135,8 @@ def _numbers_section(result, scale: Optional[MapScale] = None) -> str:
               f"{_e(s.get('n_keypoints_target', '–'))} / {_e(s.get('n_keypoints_reference', '–'))}"),
              ("refined at full resolution", _e(s.get("refined", "–")))]
     times = [(k, _num(t, ".3f", " s")) for k, t in result.timings.to_dict().items()]
-    unit = "reference px" if scale is None else f"reference px and {scale.symbol}"
+    unit = "reference px" if scale is None else (f"{scale.px_name} and {scale.symbol}" if scale.ground is None
+                                                 else f"{scale.px_name} and m on the ground")
     out = ("<h2>5. Model and statistics</h2><div class=grid><div><h3>Model</h3>" + model_html(result.model)
            + f"</div><div><h3>GCP statistics ({_e(unit)})</h3>" + _rows(stats)
            + "<h3>Time per stage</h3>" + _rows(times) + "</div></div>")
@@ -193,16 +194,18 @@ def _value_html(value) -> str:
 def _gcp_table(result, scale: Optional[MapScale] = None) -> str:
     gcps = result.gcps
     dec = _decimals(1.0 if scale is None else scale.pixel_size)
+    ground = 1.0 if scale is None or scale.ground is None else scale.ground  # Web Mercator m -> ground m
     rows = [(str(i + 1), "yes" if g.enabled else "no", _num(g.target_px[0], ".2f"), _num(g.target_px[1], ".2f"),
              _num(g.map_xy[0], f".{dec}f"), _num(g.map_xy[1], f".{dec}f"), _num(g.residual_px, ".3f"))
-            + (() if scale is None else (_num(g.residual_px * scale.pixel_size, f".{dec}f"),))
+            + (() if scale is None else (_num(g.residual_px * scale.pixel_size * ground, f".{dec}f"),))
             for i, g in enumerate(gcps[:MAX_TABLE_ROWS])]
     units = "reference px" if scale is None else f"reference CRS, {scale.symbol}"
     header = ["id", "enabled", "target x", "target y", f"map X ({units})", f"map Y ({units})", "residual (px)"]
     if scale is not None:
-        header.append(f"residual ({scale.symbol})")
+        header.append(f"residual ({scale.symbol})" if scale.ground is None else "residual (m on the ground)")
     omitted = len(gcps) - len(rows)
     more = f"<p>{omitted} more rows not shown (all are in report.json and the GCP files).</p>" if omitted > 0 else ""
+    also = "" if scale is None else " and map units" if scale.ground is None else " and metres on the ground"
     return ("<h2>6. GCPs</h2><p class=note>Target px (x = column, y = row, from the top-left corner); residual = "
-            "|model(target) − reference| in reference px" + ("" if scale is None else " and map units") + ".</p>"
+            "|model(target) − reference| in reference px" + also + ".</p>"
             + _table(header, rows, [True, False, True, True, True, True, True, True]) + more)

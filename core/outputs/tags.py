@@ -1,6 +1,8 @@
 """The verdict of the independent check, as every output carries it (tags, descriptions)."""
 from __future__ import annotations
 
+from .scale import length_text
+
 
 def verdict_tags(result) -> dict:
     """Metadata items (GeoTIFF tags, VRT metadata) naming the method and the verdict."""
@@ -25,7 +27,7 @@ def verdict_text(result) -> str:
     if v is None:
         return "not checked"
     if v.verified:
-        bound = "" if v.error_bound_px is None else f", estimated error within {v.error_bound_px:.2f} px"
+        bound = "" if v.error_bound_px is None else f", estimated error within {length_text(result, v.error_bound_px)}"
         return f"verified by an independent check{bound}"
     return f"NOT VERIFIED ({v.verdict}): " + "; ".join(v.reasons)
 

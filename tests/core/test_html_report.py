@@ -213,10 +213,12 @@ def test_crs_map_units_pixel_sizes_and_date(sift_result, tmp_path):
     # The target's pixel size as registered: the affine model's scale times the reference's.
     k = np.sqrt(abs(np.linalg.det(np.asarray(sift_result.model.matrix)[:2, :2])))
     assert f"{k * 10:.2f} m per px" in text
-    # Residuals in reference px and in metres, side by side.
-    assert f"{rmse:.3f} px ({rmse * 10:.2f} m)" in text
-    assert f"{v.error_bound_px:.2f} px ({v.error_bound_px * 10:.2f} m)" in text
-    assert f"{v.tolerance_px:.2f} px ({v.tolerance_px * 10:.2f} m)" in text
+    # Residuals in reference px (named), in metres and in target px, side by side.
+    assert f"{rmse:.3f} reference px ({rmse * 10:.2f} m, {rmse / k:.3f} target px)" in text
+    b, t = v.error_bound_px, v.tolerance_px
+    assert f"{b:.2f} reference px ({b * 10:.2f} m, {b / k:.2f} target px)" in text
+    assert f"{t:.2f} reference px ({t * 10:.2f} m, {t / k:.2f} target px)" in text
+    assert f"{k:.4g} reference px per target px" in text and "on the ground" not in text  # UTM metres are the ground's
     assert "map X (reference CRS, m)" in text and "residual (m)" in text
     assert "Pixel-to-pixel" not in text and "pixel mode" not in text
     stamp = re.search(r'<time datetime="(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)">\1</time>', text)
@@ -260,7 +262,7 @@ def test_verification_is_told_in_plain_words(sift_result, tmp_path):
 
 def test_unverified_result_is_told_in_plain_words(unverified_result, tmp_path):
     seen = _visible(_write(unverified_result, tmp_path))
-    assert "the accuracy asked for was 0.01 px (0.10 m)" in seen
+    assert "the accuracy asked for was 0.01 reference px (0.10 m, " in seen
     for jargon in ("lift", "mann", "chance"):
         assert jargon not in seen.lower(), jargon
 
@@ -303,3 +305,64 @@ def test_the_swipes_top_layer_shows_the_reference_where_the_target_does_not_reac
     valid[10:50, 20:70] = True
     top = swipe_top(ref, warped, valid)
     assert np.array_equal(top[valid], warped[valid]) and np.array_equal(top[~valid], ref.image[~valid])
+
+
+def _on_web_mercator(result, latitude: float, zoom=None):
+    """``result`` with its reference moved into Web Mercator (10 m pixels) so that the target's centre, as
+    registered, lies at ``latitude``; read from a basemap at ``zoom`` when given."""
+    import math
+
+    cx, cy = result.model.apply(np.array([[result.target.width / 2, result.target.height / 2]]))[0]
+    y = 6378137.0 * math.asinh(math.tan(math.radians(latitude)))
+    reference = dataclasses.replace(result.reference, crs=CRS.from_epsg(3857),
+                                    transform=Affine(10.0, 0.0, 1.0e6, 0.0, -10.0, y + 10.0 * cy))
+    service = None if zoom is None else {"service": "XYZ tiles", "zoom": zoom, "fetch": {"requests": 12}}
+    return dataclasses.replace(result, reference=reference, reference_service=service)
+
+
+def test_web_mercator_lengths_are_told_on_the_ground_and_in_target_pixels(sift_result, tmp_path):
+    """Web Mercator's metres are cos(latitude) ground metres: at 53° N, 10 of them are 6.02 m."""
+    result = _on_web_mercator(sift_result, 53.0, zoom=14)
+    cos = np.cos(np.radians(53.0))
+    assert report_scale.centre_latitude(result) == pytest.approx(53.0, abs=1e-9)
+    assert report_scale.ground_factor(result) == pytest.approx(cos)
+    k = report_scale.registered_scale(result)
+    assert report_scale.ground_metres(result, 1.0) == pytest.approx(10.0 * cos)
+    assert report_scale.target_px(result, 1.0) == pytest.approx(1.0 / k)
+    text = _write(result, tmp_path)
+    v, rmse = result.verification, result.stats.rmse_px
+    assert "WGS 84 / Pseudo-Mercator (EPSG:3857)" in text
+    assert f"{10 * cos:.2f} m per px on the ground at 53.0° N (10.00 Web Mercator m)" in text  # the reference
+    assert (f"{10 * k * cos:.2f} m per px on the ground ({10 * k:.2f} Web Mercator m; {k:.4g} px of the basemap at "
+            "zoom 14 per target px" in text)
+    b = v.error_bound_px
+    assert f"{b:.2f} px of the basemap at zoom 14 ({b * 10 * cos:.2f} m on the ground, {b / k:.2f} target px)" in text
+    assert f"{rmse:.3f} px of the basemap at zoom 14 ({rmse * 10 * cos:.2f} m on the ground, " in text
+    assert "residual (m on the ground)" in text and "residual (m)</th>" not in text
+    g = result.gcps[0]
+    assert f"<td class=n>{g.residual_px * 10 * cos:.2f}</td>" in text
+    assert f"{b * 10:.2f} m" not in text.replace(f"{b * 10:.2f} m on", "")  # no Web Mercator metres as lengths
+
+
+def test_a_length_names_its_pixels_and_the_ground_where_the_crs_is_not_web_mercator(sift_result):
+    south = _on_web_mercator(sift_result, -33.9)
+    assert report_scale.map_scale(south).px_name == "reference px"
+    assert report_html._latitude(report_scale.centre_latitude(south)) == "33.9° S"
+    utm = report_scale.map_scale(sift_result)
+    assert utm.ground is None and report_scale.ground_metres(sift_result, 2.0) == pytest.approx(20.0)
+    assert report_scale.is_web_mercator(CRS.from_epsg(3857))
+    assert report_scale.is_web_mercator(CRS.from_proj4("+proj=merc +a=6378137 +b=6378137 +lat_ts=0 +lon_0=0 +x_0=0 "
+                                                       "+y_0=0 +k=1 +units=m +nadgrids=@null +wktext +no_defs"))
+    assert not any(report_scale.is_web_mercator(CRS.from_epsg(code)) for code in (3395, 32632))
+    degrees = dataclasses.replace(sift_result, reference=dataclasses.replace(sift_result.reference,
+                                                                             crs=CRS.from_epsg(4326)))
+    assert report_scale.ground_metres(degrees, 1.0) is None  # a degree is no one length
+
+
+def test_a_kept_unverified_result_says_so_and_no_longer_advises_keeping_it(unverified_result, tmp_path):
+    path = tmp_path / "report.html"
+    write_html_report(str(path), unverified_result, outputs={"raster": "/out/registered.tif", "html": str(path)})
+    seen = _visible(path.read_text(encoding="utf-8"))
+    assert "Kept anyway ('Keep unverified results')" in seen and "--accept-unverified" not in seen
+    seen = _visible(_write(unverified_result, tmp_path, "not-kept.html"))
+    assert "Kept anyway" not in seen and "--accept-unverified (QGIS: 'Keep unverified results')" in seen

@@ -1,15 +1,18 @@
 """'Auto-georeference…' end to end, offscreen: the plugin's action opens the dialog on the selected raster,
 which proposes the basemap of the canvas (an XYZ layer served locally) and the canvas extent; the task
 registers, and the results land in the project with the message bar saying so."""
+import html
 import json
 import os
+import pathlib
+import re
 import time
 
 import pytest
 from qgis.core import Qgis, QgsApplication, QgsCoordinateReferenceSystem, QgsProject, QgsRasterLayer, QgsRectangle
 from qgis.gui import QgsMapCanvas, QgsMessageBar
 from qgis.PyQt import sip
-from qgis.PyQt.QtWidgets import QAction, QApplication, QMainWindow, QPushButton
+from qgis.PyQt.QtWidgets import QAction, QApplication, QMainWindow, QProgressBar, QPushButton
 
 AREA = 2.2  # the search area's half side, in target footprints (4.4 x 4.4 footprints, EPSG:3857)
 
@@ -74,16 +77,30 @@ def session(qgis_app, xyz_source, crop, tmp_path, monkeypatch):
     sip.delete(iface.window)  # with the dialog, canvas and message bar, now rather than at exit
 
 
-def wait_for_tasks(action, timeout=60.0, seen=None):
-    """Until ``action``'s tasks end; ``seen`` (a set) gets the message bar's texts meanwhile."""
+def wait_for_tasks(action, timeout=60.0, seen=None, bars=None):
+    """Until ``action``'s tasks end; ``seen`` (a set or a list, in order) gets the message bar's texts
+    meanwhile, ``bars`` (a list) every value its progress bars took."""
     end = time.monotonic() + timeout
+    watched = set()
     while action.tasks:
         assert time.monotonic() < end, "the task did not end in time"
+        items = action.iface.messageBar().items()
+        for bar in (bar for item in items for bar in item.findChildren(QProgressBar)):
+            if bars is not None and id(bar) not in watched:
+                watched.add(id(bar))
+                bar.valueChanged.connect(bars.append)
         QgsApplication.processEvents()
-        if seen is not None:
-            seen.update(item.text() for item in action.iface.messageBar().items())
+        if isinstance(seen, set):
+            seen.update(item.text() for item in items)
+        elif seen is not None:
+            seen.extend(t for t in (item.text() for item in items) if not seen or t != seen[-1])
         time.sleep(0.01)
     QgsApplication.processEvents()
+
+
+def files(folder):
+    """The outputs in ``folder`` (not Hamta's hidden bookkeeping)."""
+    return sorted(name for name in os.listdir(folder) if not name.startswith("."))
 
 
 def messages(iface):
@@ -104,16 +121,23 @@ def test_one_click_georeferences_the_selected_raster_on_the_basemap(session, mon
 
     dialog.run_button.click()
     assert not dialog.isVisible() and len(plugin.autogeoref.tasks) == 1
-    seen = set()
-    wait_for_tasks(plugin.autogeoref, seen=seen)  # about 8 s here
+    [task] = plugin.autogeoref.tasks
+    seen, bars = [], []
+    wait_for_tasks(plugin.autogeoref, seen=seen, bars=bars)  # about 8 s here
     assert any(t.startswith("Auto-georeference 'scan': fetching tiles ") for t in seen), seen
     assert len({t for t in seen if t.startswith("Auto-georeference 'scan': ")}) >= 4, seen  # stages as they go
+    # The bar only moves forward and ends full; the tile counter counts on over the run, never restarting.
+    assert bars and bars == sorted(bars) and bars[-1] == 100, bars
+    counts = [tuple(map(int, re.search(r"fetching tiles (\d+)/(\d+)$", t).groups())) for t in seen
+              if "fetching tiles" in t]
+    assert [c[0] for c in counts] == sorted(c[0] for c in counts) and counts[-1][0] > 1, counts
+    assert all(done <= total for done, total in counts), counts
 
     layers = {layer.source(): layer for layer in QgsProject.instance().mapLayers().values()}
     raster, gcps = layers[os.path.join(folder, "registered.tif")], layers[os.path.join(folder, "gcps.gpkg") +
                                                                           "|layername=gcps"]
     assert raster.crs().authid() == "EPSG:3857" and gcps.featureCount() >= 3
-    report = json.loads(open(os.path.join(folder, "report.json")).read())
+    report = json.loads(pathlib.Path(folder, "report.json").read_text())
     assert report["quality"]["verdict"] == "verified", report["quality"]["reasons"]
     import rasterio
 
@@ -121,6 +145,7 @@ def test_one_click_georeferences_the_selected_raster_on_the_basemap(session, mon
         assert ds.crs.to_epsg() == 3857
     [(level, text, buttons)] = messages(iface)
     assert level == Qgis.Success and text.startswith("'scan' is georeferenced and verified (error within "), text
+    assert re.search(r"within [0-9.]+ m on the ground, [0-9.]+ px of 'scan'\)\.$", text), text  # which pixels
     assert buttons == ["Details", "Open report", "Open the GCPs in the Georeferencer"]
 
     opened, shown = [], []
@@ -130,7 +155,11 @@ def test_one_click_georeferences_the_selected_raster_on_the_basemap(session, mon
     [details_button, report_button, georef_button] = item.findChildren(QPushButton)
     details_button.click()
     [details] = shown
-    assert "Independent check: verified" in details and "sites agree" in details and "searched" in details, details
+    assert "Independent check: verified" in details and "sites agree" in details, details
+    result = task.result  # (QGIS has deleted the task; what Python kept of it is still readable)
+    assert result.notes and all(note in details for note in result.notes), details  # where it was found
+    # The whole run's time, not the last registration's.
+    assert task.elapsed_s >= result.timings.total and f"Time: {task.elapsed_s:.1f} s" in details, details
     report_button.click()
     assert opened == [os.path.join(folder, "report.html")]
     georef_button.click()
@@ -210,21 +239,87 @@ def test_a_georeferenced_target_is_searched_where_it_says_unless_told_otherwise(
     dialog.close()
 
 
-def test_an_unverified_result_or_a_bug_is_said_plainly(session, tmp_path):
+def test_a_bug_is_said_plainly(session, tmp_path):
     from types import SimpleNamespace
 
     plugin, iface, basemap, scan = session
     job = SimpleNamespace(target_name="scan", folder=str(tmp_path))
-    verification = SimpleNamespace(reasons=["3 of 25 sites agree", "no better than chance"], verified=False)
-    unverified = SimpleNamespace(outcome="unverified", job=job, written={"html": str(tmp_path / "report.html")},
-                                 result=SimpleNamespace(verification=verification), error=None)
-    plugin.autogeoref.show_outcome(unverified)
-    [(level, text, buttons)] = messages(iface)
-    assert level == Qgis.Warning and "did not confirm it (3 of 25 sites agree; no better than chance)" in text
-    assert buttons == ["Open report"] and not QgsProject.instance().mapLayersByName("scan (georeferenced)")
-    iface.bar.clearWidgets()
     crashed = SimpleNamespace(outcome="crashed", job=job, written={}, result=None, error=KeyError("x"),
                               trace="Traceback ...")
     plugin.autogeoref.show_outcome(crashed)
     [(level, text, buttons)] = messages(iface)
     assert level == Qgis.Critical and "unexpected error (KeyError: 'x')" in text and not buttons
+
+
+def test_an_unverified_result_is_said_in_one_short_line_and_kept_without_searching_again(session, monkeypatch):
+    """The check cannot confirm an accuracy of 0.01 px: the message bar says so in a few plain words; Details
+    has why; 'Keep anyway' writes that result's outputs (no second registration), marked NOT VERIFIED."""
+    import dataclasses
+
+    plugin, iface, basemap, scan = session
+    plugin.action.trigger()
+    dialog = plugin.autogeoref.dialog
+    job = dialog.job()
+    dialog.close()
+    job = dataclasses.replace(job, options=dataclasses.replace(job.options, tolerance_px=0.01, auto_budget_s=5.0))
+    task = plugin.autogeoref.start(job)
+    bars = []
+    wait_for_tasks(plugin.autogeoref, timeout=120, bars=bars)
+    assert task.outcome == "unverified" and bars == sorted(bars) and bars[-1] == 100, (task.outcome, bars)
+    assert files(job.folder) == ["report.html", "report.json"]
+    [(level, text, buttons)] = messages(iface)
+    assert level == Qgis.Warning and len(text) <= 80 and "chance" not in text, text  # fits the bar, plain words
+    assert text == "Not verified: 'scan' was not placed with confidence, so nothing was added."
+    assert buttons == ["Details", "Keep anyway", "Open report"]
+    assert not QgsProject.instance().mapLayersByName("scan (georeferenced)")
+
+    shown = []
+    monkeypatch.setattr("hamta.plugin.action.QMessageBox.information", lambda parent, title, text: shown.append(text))
+    [details_button, keep_button, _] = iface.bar.items()[0].findChildren(QPushButton)
+    details_button.click()
+    [details] = shown
+    v = task.result.verification
+    assert f"Independent check: {v.verdict}" in details and all(reason in details for reason in v.reasons), details
+    assert "What may help:" in details and "'Keep anyway' here, or 'Keep unverified results' in the dialog" in details
+    assert f"Time: {task.elapsed_s:.1f} s" in details
+
+    for module in ("pipeline", "remote", "runner"):  # keeping writes what was found: no registration again
+        monkeypatch.setattr(f"hamta.core.{module}.register", lambda *a, **k: pytest.fail("registered again"))
+    keep_button.click()
+    [(_, text, buttons)] = messages(iface)  # the message goes; the outputs are written in a task, shown going
+    assert text.startswith("Keeping 'scan': ") and buttons == ["Cancel"], text
+    [keeping] = plugin.autogeoref.tasks
+    bars = []
+    wait_for_tasks(plugin.autogeoref, bars=bars)
+    assert keeping.outcome == "written" and bars == sorted(bars) and bars[-1] == 100, bars
+    assert files(job.folder) == ["gcps.gpkg", "gcps.points", "registered.tif", "report.html", "report.json"]
+    [raster] = QgsProject.instance().mapLayersByName("scan (georeferenced, NOT VERIFIED)")
+    assert raster.source() == os.path.join(job.folder, "registered.tif") and raster.isValid()
+    report = json.loads(pathlib.Path(job.folder, "report.json").read_text())
+    assert report["quality"]["verdict"] == v.verdict != "verified" and report["request"]["accept_unverified"] is True
+    page = html.unescape(pathlib.Path(job.folder, "report.html").read_text())
+    assert "Kept anyway ('Keep unverified results')" in page
+    import rasterio
+
+    with rasterio.open(raster.source()) as ds:
+        assert ds.tags()["HAMTA_VERDICT"] == v.verdict
+    [(level, text, buttons)] = messages(iface)
+    assert level == Qgis.Warning and text == "'scan' is georeferenced but NOT VERIFIED; check it before use."
+    assert buttons == ["Details", "Open report", "Open the GCPs in the Georeferencer"]
+    iface.bar.items()[0].findChildren(QPushButton)[0].click()
+    assert f"Time: {task.elapsed_s:.1f} s" in shown[-1] and "Kept after the run: the outputs were written in " in \
+        shown[-1]
+
+
+def test_one_name_for_keeping_unverified_results(session, provider):
+    from hamta.core.advice import KEEP_UNVERIFIED, Advice, spelled
+
+    plugin, iface, basemap, scan = session
+    plugin.action.trigger()
+    assert plugin.autogeoref.dialog.keep.text() == KEEP_UNVERIFIED == "Keep unverified results"
+    plugin.autogeoref.dialog.close()
+    for alg in ("hamta:registerauto", "hamta:batchregister"):
+        found = QgsApplication.processingRegistry().createAlgorithmById(alg)
+        assert found is not None, alg
+        assert found.parameterDefinition("KEEP_UNVERIFIED").description() == KEEP_UNVERIFIED, alg
+    assert f"(QGIS: '{KEEP_UNVERIFIED}')" in spelled(Advice("accept_unverified", True, "why"))

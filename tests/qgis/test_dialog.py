@@ -59,3 +59,6 @@ def test_each_stage_is_logged_once():
         progress(i / 50, "refining")
     progress(0.6, "checking")
     assert feedback.texts == ["refining", "checking"] and len(feedback.values) == 26
+    for i in range(1, 17):  # a counter is a step of its stage: one line, not sixteen
+        progress(0.6 + i / 100, f"fetching tiles {i}/16")
+    assert feedback.texts == ["refining", "checking", "fetching tiles"]
