@@ -6,6 +6,9 @@
   (a flat-coloured, outlined rendering standing in for a street map: a cross-modal reference);
 - ``/wms?…REQUEST=GetMap…`` — the same ``photo`` rendering for any BBOX, WIDTH and HEIGHT
   (SRS EPSG:3857);
+- coverage as real layers have it: ``/sparse/…`` answers 404 (even columns) or 204 (odd) instead of a
+  transparent tile where the raster has no data, as a ``gdal2tiles`` folder does; ``/islands/…`` also
+  answers 404 to every tile wholly inside ``hole`` (EPSG:3857 bounds), at every zoom;
 - faults: ``/missing/…`` answers 404 to every tile, ``/holes/…`` to every third, ``/broken/…`` 500,
   ``/html/…`` an HTML page with status 200, ``/flaky/…`` 503 the first time each tile is asked
   for, ``/slow/…`` waits ``slow_s`` seconds before answering.
@@ -32,8 +35,9 @@ HALF_WORLD = 20037508.342789244
 
 
 class TileServer:
-    def __init__(self, raster: str, slow_s: float = 5.0, zmax: int = 14):
+    def __init__(self, raster: str, slow_s: float = 5.0, zmax: int = 14, hole=None):
         self.raster = raster
+        self.hole = hole
         self.slow_s = slow_s
         self.zmax = zmax
         self.requests = 0
@@ -112,14 +116,21 @@ class TileServer:
                 return _send(handler, 503, b"busy", "text/plain")
         if style == "slow":
             time.sleep(self.slow_s)
-        style = "map" if style == "map" else "photo"
         size = 2 * HALF_WORLD / 2 ** z
         bbox = [-HALF_WORLD + x * size, HALF_WORLD - (y + 1) * size, -HALF_WORLD + (x + 1) * size,
                 HALF_WORLD - y * size]
-        _send(handler, 200, self.render(bbox, 256, 256, style))
+        hole = self.hole
+        if style == "islands" and hole is not None and (
+                hole[0] <= bbox[0] and bbox[2] <= hole[2] and hole[1] <= bbox[1] and bbox[3] <= hole[3]):
+            return _send(handler, 404, b"no such tile", "text/plain")
+        png = self.render(bbox, 256, 256, "map" if style == "map" else "photo", empty=style in ("sparse", "islands"))
+        if png is None:
+            return _send(handler, 404, b"no such tile", "text/plain") if x % 2 == 0 else _send(handler, 204, b"")
+        _send(handler, 200, png)
 
-    def render(self, bbox, width: int, height: int, style: str) -> bytes:
-        """PNG of ``bbox`` (EPSG:3857) at ``width`` x ``height``."""
+    def render(self, bbox, width: int, height: int, style: str, empty: bool = False):
+        """PNG of ``bbox`` (EPSG:3857) at ``width`` x ``height``; None where it would be wholly transparent and
+        ``empty`` is set."""
         transform = Affine((bbox[2] - bbox[0]) / width, 0, bbox[0], 0, -(bbox[3] - bbox[1]) / height, bbox[3])
         rgb = np.zeros((3, height, width), np.uint8)
         mask = np.zeros((height, width), np.uint8)
@@ -130,6 +141,8 @@ class TileServer:
             reproject(self._bands, rgb, src_nodata=0, dst_nodata=0, resampling=Resampling.bilinear, **common)
             reproject(self._valid.astype(np.uint8), mask, src_nodata=None, dst_nodata=0,
                       resampling=Resampling.nearest, **common)
+        if empty and not mask.any():
+            return None
         image = np.moveaxis(rgb, 0, 2)
         if style == "map":
             image = map_style(image, self._levels)

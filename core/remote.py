@@ -4,20 +4,28 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
 
 - for a georeferenced target (its georeferencing used): its footprint plus a margin
   (``FOOTPRINT_MARGIN``), at the zoom whose pixels match the target's;
-- otherwise the search area (``RegisterOptions.extent``), searched coarse to fine: read at the zoom
-  where its longer side is about 1024, 2048, then 4096 px (``AREA_SIDES``), the target is located by
-  features voting for a pose (:mod:`hamta.core.matching.locate`: any rotation, scale and place; SIFT's
-  features, then, with the 'learned' extra, XFeat's where SIFT's best places did not verify) and by its
-  structure correlated at every turn and scale (:mod:`hamta.core.matching.structure`: each zoom the
-  target sides the coarser ones were too coarse for, so the finest finds targets 1/40 of the area's
-  side); each of the few places found has its footprint (plus ``LOCATED_MARGIN``) read at the
-  zoom nearest the target's own pixels, and the target is registered there with that place as its
-  prior, as if it had been georeferenced there. At the first zoom, before the places with few agreeing
-  features, the whole area is registered once as well (the target assumed to cover ``AREA_SHARE`` of
-  it). Each registration is verified like any other, held to its share of one check's risk of
-  verifying a wrong model (``SEARCH_TRIES``: a search checks several); the first verified one is the
-  result (else the best unverified one). A place found is only where to look, never a result; one that puts the target
+- otherwise the search area (``RegisterOptions.extent``), searched coarse to fine: read at the zoom where
+  its longer side is about 1024, 2048, then 4096 px (``AREA_SIDES``, :mod:`hamta.core.basemap.zooms`), the
+  target is located by features voting for a pose (:mod:`hamta.core.matching.locate`: any rotation, scale
+  and place; SIFT's features, then, with the 'learned' extra, XFeat's where SIFT's best places did not
+  verify) and by its structure correlated at every turn and scale (:mod:`hamta.core.matching.structure`:
+  each zoom the target sides the coarser ones were too coarse for, so the finest finds targets 1/40 of the
+  area's side); each of the few places found has its footprint (plus ``LOCATED_MARGIN``) read at the zoom
+  nearest the target's own pixels, and the target is registered there with that place as its prior, as if
+  it had been georeferenced there. At the first zoom, before the places with few agreeing features, the
+  whole area is registered once as well (the target assumed to cover ``AREA_SHARE`` of it). Each
+  registration is verified like any other, held to its share of one check's risk of verifying a wrong model
+  (``SEARCH_TRIES``: a search checks several); the first verified one is the result (else the best
+  unverified one). A place found is only where to look, never a result; one that puts the target
   outside the search area is not taken. The run's time budget bounds the whole search.
+
+A place's failure is that place's outcome (no data there, no model, a read area that misses it, the
+requests spent): it is noted with the place in the result's notes and ``reference_service['places']``,
+and the search goes on. Only the user's own input ends a run with an error: a service that cannot be
+reached, an area with no data at any zoom (the first area read), a target that cannot be read. Areas are
+read through :class:`hamta.core.basemap.areas.AreaReader`: only tiles near the layer's data and no finer
+than its finest zoom, within ``SEARCH_REQUESTS`` requests (a finer zoom of the whole area only where it
+leaves ``PLACE_RESERVE`` of them for the places).
 
 Each area becomes a local GeoTIFF in the service's CRS (EPSG:3857 for XYZ layers) under the cache
 folder (a private temporary folder without one), so outputs are in the service's CRS and a rerun
@@ -28,20 +36,21 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+from functools import partial
 
 import numpy as np
 from affine import Affine
 
-from .basemap.fetch import Fetcher, ServiceError
+from .basemap.areas import AreaReader
+from .basemap.fetch import Fetcher
 from .basemap.services import TileService
-from .basemap.tiles import NoTiles, fetch_area, tile_range
+from .basemap.tiles import NoTiles
+from .basemap.zooms import pixel_text, search_bounds, search_zooms, size_text, zoom_in_budget
 from .coords import map_to_pixel, pixel_to_map, raster_outline
-from .errors import InputError, InsufficientMatchesError
-from .extent import bounds_in, parse_extent
+from .errors import HamtaError, InputError, InsufficientMatchesError, NoOverlapError, RegistrationCanceled
 from .io.raster import open_raster, read_image
 from .io.working import footprint
 from .matching.places import (
-    CANDIDATES,
     MIN_INLIERS,
     candidates,
     learned_target_features,
@@ -56,7 +65,6 @@ from .verify import VerifyParams, result_rank
 
 FOOTPRINT_MARGIN = 0.3  # of the footprint's larger side, each way: georeferencing off by up to a third of it
 LOCATED_MARGIN = 0.1  # the same once the coarse search has located the target (to a coarse pixel or so)
-MIN_AREA_PX = 64  # a search area narrower than this at the finest zoom cannot hold a target
 
 
 def register_remote(target, service: TileService, options: RegisterOptions, monitor: Monitor, fetcher=None,
@@ -64,8 +72,11 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
     """Register ``target`` onto ``service`` (see the module docstring); ``kwargs`` go to
     :func:`hamta.core.pipeline.register`. The result's ``reference_service`` records the service
     (without credentials), the zoom levels read and the fetch statistics."""
-    reader = _Reader(service, fetcher or Fetcher())
+    fetcher = fetcher or Fetcher()
     info = open_raster(target, "target")
+    searching = not uses_georeferencing(info, options)
+    reader = AreaReader(service, fetcher, min(SEARCH_REQUESTS, fetcher.max_requests) if searching else
+                     fetcher.max_requests)
     local = dataclasses.replace(options, extent=None)
 
     def register_onto(path, span, within=None, options=None, **extra):
@@ -75,21 +86,23 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
         return register(target, path, options=dataclasses.replace(options or local, extent=area),
                         progress=span.report, is_canceled=span.canceled, **extra, **kwargs)
 
-    notes = []
-    if uses_georeferencing(info, options):
+    notes, places = [], []
+    if not searching:
         poly = _footprint(info, service.crs)
         bounds = _padded(poly.bounds, FOOTPRINT_MARGIN)
         pixel_size = math.sqrt(poly.area / (info.width * info.height))
-        z = _zoom_in_budget(service, bounds, pixel_size, options.max_working_pixels)
+        z = zoom_in_budget(service, bounds, pixel_size, options.max_working_pixels)
         result = register_onto(reader.read(bounds, z, monitor.span(0.0, 0.15)), monitor.span(0.15, 1.0))
     elif options.extent is None:
         raise InputError(f"The target raster '{info.path}' has no usable georeferencing, so Hamta cannot tell where "
                          f"to look in the map service {service.label}: give a search area (CLI: --extent "
                          "xmin,ymin,xmax,ymax,EPSG:4326; in QGIS the search area, by default the map canvas).")
     else:
-        result, z = _search(info, reader, options, monitor, register_onto, notes)
+        result, z = _search(info, reader, options, monitor, register_onto, notes, places)
     record = {"service": service.label, "id": service.id, "kind": service.kind, "crs": service.crs,
-              "zoom": z, "zooms_read": reader.zooms, "fetch": reader.fetcher.stats.to_dict()}
+              "zoom": z, "zooms_read": reader.zooms, "finest_zoom": reader.known, "fetch": fetcher.stats.to_dict()}
+    if searching:
+        record["places"] = places
     return dataclasses.replace(result, reference_service=record,
                                notes=reader.fetcher.warnings + notes + list(result.notes))
 
@@ -117,63 +130,58 @@ def _padded(bounds, margin: float):
     return x0 - pad, y0 - pad, x1 + pad, y1 + pad
 
 
-class _Reader:
-    """Reads areas of ``service`` into GeoTIFFs under the fetcher's cache, recording the zooms read."""
-
-    def __init__(self, service: TileService, fetcher: Fetcher):
-        self.service, self.fetcher, self.zooms = service, fetcher, []
-        self.finest, self.empty_from = service.zmax, None
-        self.folder = fetcher.folder("areas") or _temporary()
-
-    def read(self, bounds, z: int, monitor: Monitor) -> str:
-        """The GeoTIFF of ``bounds`` at zoom ``z`` or, where the layer has no tile there, at the nearest
-        coarser zoom that has (a plain tile template does not say its finest zoom; reads after that one
-        stop there); ``self.zooms`` records the zoom read."""
-        z = min(z, self.finest)
-        while True:
-            tiles = tile_range(self.service, bounds, z)
-            if tiles.count > self.fetcher.max_requests:
-                raise ServiceError(f"Reading the area at zoom {z} from {self.service.label} needs {tiles.count} "
-                                   f"tiles, above the cap of {self.fetcher.max_requests}: choose a smaller search "
-                                   "area.")
-            try:
-                path = fetch_area(self.service, tiles, self.fetcher, self.folder, monitor)
-            except NoTiles:
-                if self.empty_from is None:
-                    self.empty_from = z
-                if z <= self.service.zmin or z <= self.empty_from - FINER_STEPS:
-                    raise
-                self.finest = z = z - 1
-                continue
-            self.zooms.append(z)
-            return path
+SEARCH_REQUESTS = 400  # the requests a search may send (the fetcher's own cap, when lower, rules)
+PLACE_RESERVE = 120  # requests kept for the places when a finer zoom of the whole area is read: two places of
+# about 1000 x 1000 px, each read at its own pixels with a margin
 
 
-FINER_STEPS = 3  # zooms tried below one whose tiles were all missing, before the area counts as empty
-
-
-def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, register_onto, notes):
+def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor, register_onto, notes, places):
     """Locate the target in the search area, coarse to fine, and register it where it was found (see the
-    module docstring); the result and the zoom it was registered onto. ``notes`` get what was searched."""
+    module docstring); the result and the zoom it was registered onto. A place's failure (no data there,
+    no model, a read area that misses, the requests spent) is that place's outcome: ``places`` gets one
+    record per place tried ({found_by, zoom, outcome}) and ``notes`` a line each; only the first area
+    read, the user's search area itself, ends the run with an error."""
     service = reader.service
-    bounds = _search_bounds(options.extent, service)
+    bounds = search_bounds(options.extent, service)
     target, per_px, (grey, grey_valid) = target_features(info, options.target_band)
     learned = learned_target_features(grey, grey_valid)
-    zooms = _search_zooms(service, bounds)
+    zooms = search_zooms(service, bounds)
     deadline = time.monotonic() + options.auto_budget_s
 
     def budgeted():
         """The options of one place: what is left of the run's time budget."""
         return dataclasses.replace(options, auto_budget_s=max(0.0, deadline - time.monotonic()))
 
-    best, places, searched, whole_tried = None, [], [], False
+    def ahead(label, parts_left):
+        """The part of the bar from where the search stands in its time budget to a share of what is left,
+        its messages labelled (the bar moves on while places are tried, whatever their number)."""
+        start = min(0.9, 1.0 - (deadline - time.monotonic()) / max(options.auto_budget_s, 1e-3))
+        return monitor.span(start, start + (1.0 - start) / max(1, parts_left)).labelled(label)
+
+    def tried(found_by, z, outcome):
+        places.append({"found_by": found_by, "zoom": z, "outcome": outcome})
+        notes.append(f"{found_by}, read at zoom {z}: {outcome}")
+
+    best, placed_at, searched, whole_tried = None, [], [], False
     spent = f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried"
     for i, z in enumerate(zooms):
         if time.monotonic() > deadline:  # a finer zoom costs its tiles and its locating before any place
             notes.extend([spent] if spent not in notes else [])
             break
-        span = monitor.span(i / len(zooms), (i + 1) / len(zooms))
-        path = reader.read(bounds, z, span.span(0.0, 0.3))
+        span = ahead(f"zoom {z}", len(zooms) - i + MAX_PLACES - len(placed_at))
+        if searched:
+            cost = reader.cost(bounds, z)
+            if reader.planned + cost + PLACE_RESERVE > reader.budget:
+                notes.append(f"zoom {reader.zoom_for(bounds, z)} was not searched: its {cost} tiles would leave too "
+                             f"few of the {reader.budget} requests a search may send for the places")
+                break
+        try:
+            path = reader.read(bounds, z, span.span(0.0, 0.3))
+        except HamtaError as exc:
+            if not searched or isinstance(exc, RegistrationCanceled):
+                raise
+            notes.append(f"zoom {z} was not searched: {reader.plain(exc)}")
+            continue
         z = reader.zooms[-1]
         if z in searched:  # the layer's finest zoom was reached: this one was searched already
             continue
@@ -182,40 +190,49 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
         area = open_raster(path, "reference")
         image, valid = read_image(area, (1, 2, 3))
         _outside(valid, area.transform, bounds)
-        tried = []
+        count = len(places)
         side = max(bounds[2] - bounds[0], bounds[3] - bounds[1]) / service.resolution(z)
         structure = grey, grey_valid, structure_sides(side, 2.0 ** (z - searched[-2]) if len(searched) > 1 else None)
-        for j, (found_by, c) in enumerate(candidates(target, learned, image, valid, not whole_tried, structure)):
-            step = span.span(0.4 + 0.6 * j / STEPS_PER_ZOOM, 0.4 + 0.6 * min(j + 1, STEPS_PER_ZOOM) / STEPS_PER_ZOOM)
+        for found_by, c in candidates(target, learned, image, valid, not whole_tried, structure):
             if time.monotonic() > deadline:
                 notes.append(spent)
                 break
             if c is None:
                 whole_tried = True
-                result, z_fine = _register_whole_area(info, reader, bounds, z, budgeted(), register_onto, step, notes)
+                what = f"the whole area at zoom {z} (the target taken to cover 1/{AREA_SHARE} of it)"
+                attempt, label = partial(_register_whole_area, info, reader, bounds, z), "the whole area"
             else:
                 placed = area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
-                if seen(placed, info.width, info.height, places) or len(places) >= MAX_PLACES:
+                if seen(placed, info.width, info.height, placed_at) or len(placed_at) >= MAX_PLACES:
                     continue
-                places.append(placed)
-                tried.append(f"a place {found_by} features found ({c.inliers} agreeing)" if c.inliers else
-                             f"a place the target's structure matched (score {c.score:.1f})")
-                result, z_fine = _register_placed(info, reader, placed, bounds, budgeted(), register_onto, step,
-                                                  notes)
-            if result is not None and (best is None or result_rank(result) > result_rank(best[0])):
+                placed_at.append(placed)
+                what = (f"a place {found_by} features found at zoom {z} ({c.inliers} agreeing)" if c.inliers else
+                        f"a place the target's structure matched at zoom {z} (score {c.score:.1f})")
+                attempt, label = partial(_register_placed, info, reader, placed, bounds), f"place {len(placed_at)}"
+            try:
+                result, z_fine = attempt(budgeted(), register_onto, ahead(label, MAX_PLACES + 1 - len(placed_at)))
+            except HamtaError as exc:
+                if isinstance(exc, RegistrationCanceled):
+                    raise
+                tried(what, exc.zoom, str(exc)) if isinstance(exc, _PlaceFailed) else tried(
+                    what, z, _failure(reader, exc))
+                continue
+            tried(what, z_fine, result.verification.verdict if result.verification else "not checked")
+            if best is None or result_rank(result) > result_rank(best[0]):
                 best = result, z_fine
-            if best is not None and best[0].verified:
+            if best[0].verified:
                 break
-        notes.append(f"searched {_size_text(bounds, service)} at zoom {z} ({_pixel_text(service, z)} pixels): "
-                     + (", ".join(tried) or "no place with enough agreeing features"))
+        if len(places) == count:
+            notes.append(f"searched {size_text(bounds, service)} at zoom {z} ({pixel_text(service, z)} pixels): "
+                         "no place with enough agreeing features")
         del image, valid
         if best is not None and best[0].verified:
             return best
     if best is None:
         raise InsufficientMatchesError(
-            f"The target raster '{info.path}' was not found in the search area ({_size_text(bounds, service)}, "
+            f"The target raster '{info.path}' was not found in the search area ({size_text(bounds, service)}, "
             f"read at zoom{'s' if len(searched) > 1 else ''} {', '.join(map(str, searched))}): "
-            + (f"none of the {len(places)} places that looked alike registered. " if places else
+            + (f"none of the {len(places)} places tried registered ({_outcomes(places)}). " if places else
                "no place in it looked enough like the target. ")
             + "Zoom the map closer to where the target is (a search area a few times its size), and check that the "
               "area holds it; a target that is mirrored, or whose ground has mostly changed since, may not be found.",
@@ -223,48 +240,59 @@ def _search(info, reader: _Reader, options: RegisterOptions, monitor: Monitor, r
     return best
 
 
+class _PlaceFailed(HamtaError):
+    """A place gave nothing to keep: ``zoom`` is the zoom it was read at."""
+
+    def __init__(self, message: str, zoom: int):
+        super().__init__(message)
+        self.zoom = zoom
+
+
+def _failure(reader: AreaReader, exc: HamtaError) -> str:
+    """A place's failure in a few words, naming no file of the cache."""
+    if isinstance(exc, NoTiles):
+        return "not read: the layer has no data there"
+    if isinstance(exc, InsufficientMatchesError):
+        return "no model (too few agreeing points)"
+    if isinstance(exc, NoOverlapError):
+        return "not registered: the place's read area does not hold it"
+    return reader.plain(exc)
+
+
+def _outcomes(places) -> str:
+    """How many places ended each way, most common first."""
+    counts = {}
+    for p in places:
+        counts[p["outcome"]] = counts.get(p["outcome"], 0) + 1
+    return "; ".join(f"{n} {outcome}" for outcome, n in sorted(counts.items(), key=lambda kv: -kv[1]))
+
+
 MAX_PLACES = 6  # places registered in all
-STEPS_PER_ZOOM = 3 * CANDIDATES + 1  # places of both features, of the structure and the whole area: progress steps
 SEARCH_TRIES = MAX_PLACES + 2  # registrations a search may check: the places and the whole area (coarse, then fine)
 AREA_SHARE = 7  # the share of the area's pixels a target is assumed to cover when the whole area is registered
-AREA_SIDES = (1024, 2048, 4096)  # px: the search area's longer side at each zoom searched, coarse to fine: the target
-# at 1/30 of the area's side is still 136 px at the last
 
 
-def _search_zooms(service: TileService, bounds) -> list:
-    """The zooms at which the search area's longer side is about each of :data:`AREA_SIDES` (coarsest
-    first; fewer where the layer's finest zoom is reached)."""
-    side = max(bounds[2] - bounds[0], bounds[3] - bounds[1])
-    zooms = []
-    for px in AREA_SIDES:
-        z = int(math.floor(math.log2(px * service.resolution(0) / side) + 0.2))
-        z = min(max(z, service.zmin), service.zmax)
-        if z not in zooms:
-            zooms.append(z)
-    return zooms
-
-
-def _register_whole_area(info, reader: _Reader, bounds, z: int, options: RegisterOptions, register_onto,
-                         monitor: Monitor, notes):
+def _register_whole_area(info, reader: AreaReader, bounds, z: int, options: RegisterOptions, register_onto,
+                         monitor: Monitor):
     """When no place found verifies: the target registered onto the whole area read at zoom ``z`` as if it
     covered :data:`AREA_SHARE` of it (the methods of 'auto' match across a factor 2 of scale, so a target
     covering 1/25 to 1/2 of the area), then again at the zoom nearest its pixels where that registration
     put it. Areas a few times the target's size, where the area's features are too few to vote, are
-    found this way; (result, zoom), or (None, zoom) when it gave nothing in the area."""
+    found this way; (result, zoom). Raises a :class:`HamtaError` when it gives nothing in the area."""
     path = reader.read(bounds, z, monitor.span(0.0, 0.1))
-    try:
-        coarse = register_onto(path, monitor.span(0.1, 0.5), within=bounds, options=options,
-                               target_pixels=_guess_pixels(bounds, reader.service, z), short=True)
-    except InsufficientMatchesError as exc:
-        notes.append(f"the target registered onto the whole area at zoom {z} gave no model ({exc})")
-        return None, z
+    coarse = register_onto(path, monitor.span(0.1, 0.5), within=bounds, options=options,
+                           target_pixels=_guess_pixels(bounds, reader.service, z), short=True)
     if not _overlaps(coarse, info, bounds):
-        return None, z
+        raise _PlaceFailed("the model puts the target outside the search area; not taken", z)
     coarse = _held_to_the_search(coarse)
-    notes.append(f"the target registered onto the whole area at zoom {z}: {coarse.verification.verdict}")
-    fine, z_fine = _register_placed(info, reader, _placed_from(coarse, info), bounds, options, register_onto,
-                                    monitor.span(0.5, 1.0), notes)
-    if fine is not None and result_rank(fine) > result_rank(coarse):
+    try:
+        fine, z_fine = _register_placed(info, reader, _placed_from(coarse, info), bounds, options, register_onto,
+                                        monitor.span(0.5, 1.0))
+    except HamtaError as exc:
+        if isinstance(exc, RegistrationCanceled):
+            raise
+        return coarse, z
+    if result_rank(fine) > result_rank(coarse):
         return fine, z_fine
     return coarse, z
 
@@ -305,55 +333,26 @@ def _overlaps(result, info, bounds) -> bool:
     return polygon.is_valid and polygon.intersects(box(*bounds))
 
 
-def _register_placed(info, reader: _Reader, placed, bounds, options: RegisterOptions, register_onto, monitor: Monitor,
-                     notes):
+def _register_placed(info, reader: AreaReader, placed, bounds, options: RegisterOptions, register_onto,
+                     monitor: Monitor):
     """Register the target onto its footprint through ``placed`` (target px -> map), read at the zoom
-    nearest its pixels; (result, zoom), or (None, zoom) when no method found a model there or the model
-    puts the target outside the search area ``bounds``."""
+    nearest its pixels; (result, zoom). Raises a :class:`HamtaError` when the place gives nothing: no data
+    there, no model, or a model that puts the target outside the search area ``bounds``."""
     outline = pixel_to_map(placed, raster_outline(info.width, info.height, 9, ends=True))
     around = _padded((*outline.min(axis=0), *outline.max(axis=0)), LOCATED_MARGIN)
     pixel = math.sqrt(abs(placed.determinant))
-    z = _zoom_in_budget(reader.service, around, pixel, options.max_working_pixels)
-    path = reader.read(around, z, monitor.span(0.0, 0.2))
-    z = reader.zooms[-1]
+    z = zoom_in_budget(reader.service, around, pixel, options.max_working_pixels)
     try:
+        path = reader.read(around, z, monitor.span(0.0, 0.2))
+        z = reader.zooms[-1]
         result = register_onto(path, monitor.span(0.2, 1.0), options=options, placed=placed, short=True)
-    except InsufficientMatchesError as exc:
-        notes.append(f"a place registered at zoom {z} gave no model ({exc})")
-        return None, z
+    except HamtaError as exc:
+        if isinstance(exc, RegistrationCanceled):
+            raise
+        raise _PlaceFailed(_failure(reader, exc), z) from exc
     if not _overlaps(result, info, bounds):
-        notes.append(f"a place registered at zoom {z} put the target outside the search area; it was not taken")
-        return None, z
+        raise _PlaceFailed("the model puts the target outside the search area; not taken", z)
     return _held_to_the_search(result), z
-
-
-def _zoom_in_budget(service: TileService, bounds, pixel_size: float, max_pixels: int) -> int:
-    """The finest zoom whose pixels are at least 0.75 ``pixel_size`` (0: any) at which ``bounds`` fits
-    ``max_pixels``; the coarsest zoom when none is that coarse."""
-    area = (bounds[2] - bounds[0]) * (bounds[3] - bounds[1])
-    for z in range(service.zmax, service.zmin - 1, -1):
-        res = service.resolution(z)
-        if area / res ** 2 <= max_pixels and (res >= pixel_size * 0.75 or z == service.zmin):
-            return z
-    raise InputError(f"The search area ({_size_text(bounds, service)}) is too large for {service.label}: even at its "
-                     f"coarsest zoom ({service.zmin}) it exceeds the pixel budget. Give a smaller search area.")
-
-
-def _search_bounds(text: str, service: TileService):
-    """The search area in the service's CRS, clipped to its grid; refused when it is too small to hold a
-    target (or its numbers look like metres given without their CRS)."""
-    area = parse_extent(text)
-    if area.crs is None and max(abs(v) for v in area.bounds) > 180:
-        raise InputError(f"The search area '{text}' has no CRS, so it is read as longitudes and latitudes, but its "
-                         "numbers are beyond 180: add the CRS they are in (e.g. ',EPSG:3857' for Web Mercator metres).")
-    x0, y0, x1, y1 = bounds_in(area, service.crs, "EPSG:4326")
-    (ox, oy), tile = service.origin(), service.resolution(0) * service.tile_px
-    x0, x1 = max(x0, ox), min(x1, ox + tile * service.tile_count(0)[0])
-    y0, y1 = max(y0, oy - tile * service.tile_count(0)[1]), min(y1, oy)
-    if min(x1 - x0, y1 - y0) < MIN_AREA_PX * service.resolution(service.zmax):
-        raise InputError(f"The search area '{text}' is only {_size_text((x0, y0, x1, y1), service)} in {service.crs}, "
-                         "too small to hold a target at the layer's finest zoom.")
-    return x0, y0, x1, y1
 
 
 def _placed_from(result, info) -> Affine:
@@ -368,27 +367,3 @@ def _placed_from(result, info) -> Affine:
 def _guess_pixels(bounds, service: TileService, z: int) -> int:
     """The target's working size when the whole area is registered at zoom ``z``: :data:`AREA_SHARE` of it."""
     return int((bounds[2] - bounds[0]) * (bounds[3] - bounds[1]) / service.resolution(z) ** 2 / AREA_SHARE)
-
-
-def _pixel_text(service: TileService, z: int) -> str:
-    unit = "°" if service.crs == "EPSG:4326" else " m"
-    return f"{service.resolution(z):.4g}{unit}"
-
-
-def _size_text(bounds, service: TileService) -> str:
-    if service.crs == "EPSG:4326":
-        return f"{bounds[2] - bounds[0]:.4g}° x {bounds[3] - bounds[1]:.4g}°"
-    return f"{(bounds[2] - bounds[0]) / 1000:.4g} x {(bounds[3] - bounds[1]) / 1000:.4g} km (map units)"
-
-
-def _temporary() -> str:
-    """A private folder of this process, removed at exit (areas read without a disk cache)."""
-    import atexit
-    import shutil
-    import tempfile
-
-    folder = tempfile.mkdtemp(prefix="hamta-areas-")
-    atexit.register(shutil.rmtree, folder, True)
-    return folder
-
-

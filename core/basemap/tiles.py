@@ -63,31 +63,41 @@ def tile_range(service: TileService, bounds: Bounds, z: int) -> TileRange:
     return TileRange(z, x0, y0, x1, y1)
 
 
-def fetch_area(service: TileService, tiles: TileRange, fetcher: Fetcher, folder: str, monitor=None) -> str:
+def fetch_area(service: TileService, tiles: TileRange, fetcher: Fetcher, folder: str, monitor=None,
+               wanted=None) -> str:
     """Fetch ``tiles`` and write them as one GeoTIFF in ``folder``; its path (reused when present and
-    readable). A tile that fails fails the area: an area with holes is never written as whole."""
-    key = hashlib.sha256(f"{service}|{tiles}".encode()).hexdigest()[:24]
+    readable). ``wanted`` (rows, cols of booleans; all by default) says which tiles to ask for: the others
+    are left empty (where the layer has no data, :mod:`hamta.core.basemap.coverage`). A tile that fails
+    fails the area: an area with holes is never written as whole."""
+    everything = wanted is None or bool(np.all(wanted))
+    skipped = "" if everything else hashlib.sha256(np.packbits(wanted).tobytes()).hexdigest()[:12]
+    key = hashlib.sha256(f"{service}|{tiles}|{skipped}".encode()).hexdigest()[:24]
     path = os.path.join(folder, f"area-{key}.tif")
     if _readable(path):
         fetcher.stats.cache_hits += tiles.count  # the area's tiles, from the cache as one file
         return path
-    urls = [service.tile_url(tiles.z, x, y) for y in range(tiles.y0, tiles.y1 + 1)
-            for x in range(tiles.x0, tiles.x1 + 1)]
+    cells = [(r, c) for r in range(tiles.y1 - tiles.y0 + 1) for c in range(tiles.x1 - tiles.x0 + 1)
+             if everything or wanted[r, c]]
+    urls = [service.tile_url(tiles.z, tiles.x0 + c, tiles.y0 + r) for r, c in cells]
     n, width = service.tile_px, tiles.x1 - tiles.x0 + 1
+    where = host(service.tile_url(tiles.z, tiles.x0, tiles.y0))
+    if not urls:
+        raise NoTiles(f"The map service at {where} has no data there: the layer's coarser tiles are empty around "
+                      f"the {tiles.count} tiles of zoom {tiles.z} that would cover it.")
     mosaic = np.zeros((4, (tiles.y1 - tiles.y0 + 1) * n, width * n), np.uint8)
     found = 0
     for i, tile in fetcher.each(urls, partial(decode_tile, n=n), monitor):
         if tile is not None:
-            r, c = divmod(i, width)
+            r, c = cells[i]
             mosaic[:, r * n:(r + 1) * n, c * n:(c + 1) * n] = tile
             found += 1
     if not found:
-        raise NoTiles(f"The map service at {host(urls[0])} has no data in the search area: each of the "
-                           f"{len(urls)} tiles of zoom {tiles.z} was answered 'HTTP 404 Not Found', 'HTTP 204 No "
-                           "Content' or empty.")
+        raise NoTiles(f"The map service at {where} has no data in the search area: each of the "
+                      f"{len(urls)} tiles of zoom {tiles.z} was answered 'HTTP 404 Not Found', 'HTTP 204 No "
+                      "Content' or empty.")
     if not mosaic[3].any():
-        raise NoTiles(f"The map service at {host(urls[0])} has no data in the search area: the {len(urls)} "
-                           f"tiles of zoom {tiles.z} are fully transparent.")
+        raise NoTiles(f"The map service at {where} has no data in the search area: the {len(urls)} "
+                      f"tiles of zoom {tiles.z} are fully transparent.")
     try:
         _write(path, mosaic, service, tiles)
     except (OSError, RasterioError) as exc:  # a full or failing cache disk: the area is kept for this run only

@@ -6,11 +6,11 @@ import pytest
 
 from hamta.bench.synthetic import make_landscape
 from hamta.bench.tileserver import TileServer
+from hamta.core.basemap.areas import AreaReader
 from hamta.core.basemap.fetch import Fetcher
 from hamta.core.basemap.services import parse_service
 from hamta.core.basemap.tiles import NoTiles
 from hamta.core.matching.locate import features, locate
-from hamta.core.remote import _Reader
 from tests.conftest import grey, turned_window
 
 
@@ -57,7 +57,7 @@ def test_a_layer_s_finest_zoom_is_found_below_the_zoom_asked(landsat, tmp_path):
     read at 12, the server's finest, and later reads stop there; an area outside the layer stays an error."""
     with TileServer(landsat, zmax=12) as server:
         service = parse_service(server.xyz())
-        reader = _Reader(service, Fetcher(cache=str(tmp_path / "cache")))
+        reader = AreaReader(service, Fetcher(cache=str(tmp_path / "cache")), 400)
         bounds = (-8.68e6, 2.80e6, -8.66e6, 2.82e6)  # inside the Landsat sample, EPSG:3857
         reader.read(bounds, 14, None)
         reader.read(bounds, 13, None)
