@@ -186,7 +186,7 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
         if z in searched:  # the layer's finest zoom was reached: this one was searched already
             continue
         searched.append(z)
-        span.report(0.3, f"locating the target at zoom {z}")
+        span.report(0.3, "locating the target")
         area = open_raster(path, "reference")
         image, valid = read_image(area, (1, 2, 3))
         _outside(valid, area.transform, bounds)
@@ -199,7 +199,7 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
                 break
             if c is None:
                 whole_tried = True
-                what = f"the whole area at zoom {z} (the target taken to cover 1/{AREA_SHARE} of it)"
+                what = f"the whole area at zoom {z}"
                 attempt, label = partial(_register_whole_area, info, reader, bounds, z), "the whole area"
             else:
                 placed = area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
@@ -214,10 +214,9 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
             except HamtaError as exc:
                 if isinstance(exc, RegistrationCanceled):
                     raise
-                tried(what, exc.zoom, str(exc)) if isinstance(exc, _PlaceFailed) else tried(
-                    what, z, _failure(reader, exc))
+                tried(what, *((exc.zoom, str(exc)) if isinstance(exc, _PlaceFailed) else (z, _failure(reader, exc))))
                 continue
-            tried(what, z_fine, result.verification.verdict if result.verification else "not checked")
+            tried(what, z_fine, _checked(result))
             if best is None or result_rank(result) > result_rank(best[0]):
                 best = result, z_fine
             if best[0].verified:
@@ -257,6 +256,16 @@ def _failure(reader: AreaReader, exc: HamtaError) -> str:
     if isinstance(exc, NoOverlapError):
         return "not registered: the place's read area does not hold it"
     return reader.plain(exc)
+
+
+def _checked(result) -> str:
+    """What the independent check said of a place's registration, in words."""
+    v = result.verification
+    if v is None or v.verdict == "failed":
+        return "registered; the check found no agreement"
+    if v.verdict == "suspect":
+        return "registered; the check found some agreement, not enough to verify"
+    return "verified"
 
 
 def _outcomes(places) -> str:

@@ -29,42 +29,42 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="117"/>
+        <location filename="../plugin/action.py" line="116"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="142"/>
+        <location filename="../plugin/action.py" line="141"/>
         <source>{} (georeferenced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="144"/>
+        <location filename="../plugin/action.py" line="143"/>
         <source>{} GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="149"/>
+        <location filename="../plugin/action.py" line="148"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="175"/>
+        <location filename="../plugin/action.py" line="172"/>
         <source>Open report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="184"/>
+        <location filename="../plugin/action.py" line="181"/>
         <source>In the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="184"/>
+        <location filename="../plugin/action.py" line="181"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="185"/>
+        <location filename="../plugin/action.py" line="182"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -159,27 +159,17 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="165"/>
-        <source>&apos;{}&apos; is georeferenced and verified{}.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="168"/>
-        <source>&apos;{}&apos; is georeferenced but NOT VERIFIED; check it before use.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="250"/>
+        <location filename="../plugin/action.py" line="251"/>
         <source>&apos;{}&apos; onto &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="261"/>
+        <location filename="../plugin/action.py" line="262"/>
         <source>Method: {}; {} GCPs; transformation: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="265"/>
+        <location filename="../plugin/action.py" line="266"/>
         <source>Time: {:.1f} s</source>
         <translation type="unfinished"></translation>
     </message>
@@ -194,73 +184,83 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="113"/>
-        <source>Not verified: &apos;{}&apos; was not placed with confidence, so nothing was added.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="130"/>
+        <location filename="../plugin/action.py" line="129"/>
         <source>Keep &apos;{}&apos; (not verified)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="134"/>
+        <location filename="../plugin/action.py" line="133"/>
         <source>Keeping &apos;{}&apos;: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="142"/>
-        <source>{} (georeferenced, NOT VERIFIED)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="165"/>
-        <source> (error within {})</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/action.py" line="218"/>
+        <location filename="../plugin/action.py" line="219"/>
         <source>{:.1f} m on the ground</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="218"/>
+        <location filename="../plugin/action.py" line="219"/>
         <source>{:.2f} m on the ground</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="221"/>
+        <location filename="../plugin/action.py" line="222"/>
         <source>{:.1f} px of &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="252"/>
+        <location filename="../plugin/action.py" line="253"/>
         <source>Independent check: {}; {} of {} sites agree; error within {} (tolerance {})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="259"/>
+        <location filename="../plugin/action.py" line="260"/>
         <source>What may help:</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="267"/>
+        <location filename="../plugin/action.py" line="268"/>
         <source>Kept after the run: the outputs were written in {:.1f} s.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="278"/>
+        <location filename="../plugin/action.py" line="279"/>
         <source>&apos;Keep anyway&apos; here, or &apos;{}&apos; in the dialog: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="281"/>
+        <location filename="../plugin/action.py" line="282"/>
         <source>Search area</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
         <location filename="../plugin/autogeoref.py" line="147"/>
         <source>Keep unverified results</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="113"/>
+        <source>&apos;{}&apos; not verified; nothing added.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="141"/>
+        <source>NOT VERIFIED {} (georeferenced)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="164"/>
+        <source>&apos;{}&apos; verified{}.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="164"/>
+        <source>, within {}</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="165"/>
+        <source>&apos;{}&apos; NOT VERIFIED; check it before use.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -34,22 +34,22 @@
         <translation type="obsolete">«{}» ثبت شد، اما بررسی مستقل آن را تأیید نکرد ({}). رستر زمین‌مرجع نوشته نشد؛ گزارش را ببینید، یا «نگه داشتن نتیجهٔ تأییدنشده» را بزنید تا به هر حال نوشته شود.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="117"/>
+        <location filename="../plugin/action.py" line="116"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation>همتا با خطایی پیش‌بینی‌نشده متوقف شد ({}: {})؛ چیزی افزوده نشد. لطفاً آن را گزارش کنید (جزئیات در گزارش پیام‌ها است).</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="142"/>
+        <location filename="../plugin/action.py" line="141"/>
         <source>{} (georeferenced)</source>
         <translation>{} (زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="144"/>
+        <location filename="../plugin/action.py" line="143"/>
         <source>{} GCPs</source>
         <translation>نقاط کنترل {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="149"/>
+        <location filename="../plugin/action.py" line="148"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation>خروجی «{}» بارگذاری نشد.</translation>
     </message>
@@ -74,22 +74,22 @@
         <translation type="obsolete">بررسی نشده</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="175"/>
+        <location filename="../plugin/action.py" line="172"/>
         <source>Open report</source>
         <translation>باز کردن گزارش</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="184"/>
+        <location filename="../plugin/action.py" line="181"/>
         <source>In the Georeferencer</source>
         <translation>در زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="184"/>
+        <location filename="../plugin/action.py" line="181"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation>در رستر ◂ زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="185"/>
+        <location filename="../plugin/action.py" line="182"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation>{}، رستر «{}» را باز کنید (پرونده ◂ باز کردن رستر…)، سپس پرونده ◂ بارگذاری نقاط کنترل… و مسیر پروندهٔ نقاط کنترل را که اکنون در حافظهٔ موقت است بچسبانید: {}</translation>
     </message>
@@ -201,15 +201,15 @@
     <message>
         <location filename="../plugin/action.py" line="165"/>
         <source>&apos;{}&apos; is georeferenced and verified{}.</source>
-        <translation>'{}' زمین‌مرجع شد و درستی آن تأیید شد{}.</translation>
+        <translation type="obsolete">'{}' زمین‌مرجع شد و درستی آن تأیید شد{}.</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="168"/>
         <source>&apos;{}&apos; is georeferenced but NOT VERIFIED; check it before use.</source>
-        <translation>'{}' زمین‌مرجع شد اما تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
+        <translation type="obsolete">'{}' زمین‌مرجع شد اما تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="250"/>
+        <location filename="../plugin/action.py" line="251"/>
         <source>&apos;{}&apos; onto &apos;{}&apos;</source>
         <translation>'{}' روی '{}'</translation>
     </message>
@@ -219,12 +219,12 @@
         <translation type="obsolete">بررسی مستقل: {}؛ {} از {} محل موافق‌اند؛ کران خطا {} پیکسل (رواداری {:g} پیکسل)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="261"/>
+        <location filename="../plugin/action.py" line="262"/>
         <source>Method: {}; {} GCPs; transformation: {}</source>
         <translation>روش: {}؛ {} نقطهٔ کنترل زمینی؛ تبدیل: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="265"/>
+        <location filename="../plugin/action.py" line="266"/>
         <source>Time: {:.1f} s</source>
         <translation>زمان: {:.1f} ثانیه</translation>
     </message>
@@ -241,65 +241,65 @@
     <message>
         <location filename="../plugin/action.py" line="113"/>
         <source>Not verified: &apos;{}&apos; was not placed with confidence, so nothing was added.</source>
-        <translation>تأیید نشد: جای «{}» با اطمینان یافته نشد، پس چیزی افزوده نشد.</translation>
+        <translation type="obsolete">تأیید نشد: جای «{}» با اطمینان یافته نشد، پس چیزی افزوده نشد.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="130"/>
+        <location filename="../plugin/action.py" line="129"/>
         <source>Keep &apos;{}&apos; (not verified)</source>
         <translation>نگه داشتن «{}» (تأییدنشده)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="134"/>
+        <location filename="../plugin/action.py" line="133"/>
         <source>Keeping &apos;{}&apos;: {}</source>
         <translation>نگه داشتن «{}»: {}</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="142"/>
         <source>{} (georeferenced, NOT VERIFIED)</source>
-        <translation>{} (زمین‌مرجع، تأییدنشده)</translation>
+        <translation type="obsolete">{} (زمین‌مرجع، تأییدنشده)</translation>
     </message>
     <message>
         <location filename="../plugin/action.py" line="165"/>
         <source> (error within {})</source>
-        <translation> (خطا حداکثر {})</translation>
+        <translation type="obsolete"> (خطا حداکثر {})</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="218"/>
+        <location filename="../plugin/action.py" line="219"/>
         <source>{:.1f} m on the ground</source>
         <translation>{:.1f} متر روی زمین</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="218"/>
+        <location filename="../plugin/action.py" line="219"/>
         <source>{:.2f} m on the ground</source>
         <translation>{:.2f} متر روی زمین</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="221"/>
+        <location filename="../plugin/action.py" line="222"/>
         <source>{:.1f} px of &apos;{}&apos;</source>
         <translation>{:.1f} پیکسلِ «{}»</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="252"/>
+        <location filename="../plugin/action.py" line="253"/>
         <source>Independent check: {}; {} of {} sites agree; error within {} (tolerance {})</source>
         <translation>بررسی مستقل: {}؛ {} از {} محل موافق‌اند؛ خطا حداکثر {} (رواداری {})</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="259"/>
+        <location filename="../plugin/action.py" line="260"/>
         <source>What may help:</source>
         <translation>آنچه ممکن است کمک کند:</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="267"/>
+        <location filename="../plugin/action.py" line="268"/>
         <source>Kept after the run: the outputs were written in {:.1f} s.</source>
         <translation>پس از اجرا نگه داشته شد: خروجی‌ها در {:.1f} ثانیه نوشته شدند.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="278"/>
+        <location filename="../plugin/action.py" line="279"/>
         <source>&apos;Keep anyway&apos; here, or &apos;{}&apos; in the dialog: {}</source>
         <translation>«به هر حال نگه دار» در همین‌جا، یا «{}» در پنجره: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="281"/>
+        <location filename="../plugin/action.py" line="282"/>
         <source>Search area</source>
         <translation>محدودهٔ جست‌وجو</translation>
     </message>
@@ -307,6 +307,31 @@
         <location filename="../plugin/autogeoref.py" line="147"/>
         <source>Keep unverified results</source>
         <translation>نگه‌داشتن نتایج تأییدنشده</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="113"/>
+        <source>&apos;{}&apos; not verified; nothing added.</source>
+        <translation>'{}' تأیید نشد؛ چیزی افزوده نشد.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="141"/>
+        <source>NOT VERIFIED {} (georeferenced)</source>
+        <translation>تأییدنشده {} (زمین‌مرجع)</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="164"/>
+        <source>&apos;{}&apos; verified{}.</source>
+        <translation>'{}' تأیید شد{}.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="164"/>
+        <source>, within {}</source>
+        <translation>، با خطای کمتر از {}</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="165"/>
+        <source>&apos;{}&apos; NOT VERIFIED; check it before use.</source>
+        <translation>'{}' تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
     </message>
 </context>
 <context>

@@ -110,8 +110,7 @@ class AutoGeoreference:
             item = None
             buttons = [(tr("Details"), lambda: self.show_details(ended)),
                        (tr("Keep anyway"), lambda: self.keep(ended, item))] + self.report_button(written)
-            item = self.push(tr("Not verified: '{}' was not placed with confidence, so nothing was added.").format(
-                job.target_name), Qgis.Warning, buttons)
+            item = self.push(tr("'{}' not verified; nothing added.").format(job.target_name), Qgis.Warning, buttons)
         elif task.outcome == CRASHED:
             QgsMessageLog.logMessage(task.trace, TITLE, Qgis.Critical)
             self.push(tr("Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the "
@@ -139,7 +138,7 @@ class AutoGeoreference:
         """The warped raster, then its GCPs above it (their style is in the GeoPackage); a result the check
         did not verify says so in its name."""
         project = QgsProject.instance()
-        name = tr("{} (georeferenced)") if verified else tr("{} (georeferenced, NOT VERIFIED)")
+        name = tr("{} (georeferenced)") if verified else tr("NOT VERIFIED {} (georeferenced)")
         raster = QgsRasterLayer(written["raster"], name.format(job.target_name))
         gcps = QgsVectorLayer(f"{written['gpkg']}|layername=gcps", tr("{} GCPs").format(job.target_name), "ogr")
         for layer in (raster, gcps):
@@ -161,11 +160,9 @@ class AutoGeoreference:
         pixels; the rest is behind 'Details'."""
         v = result.verification
         if result.verified:
-            bound = error_text(job, result, v.error_bound_px)
-            return tr("'{}' is georeferenced and verified{}.").format(job.target_name,
-                                                                       tr(" (error within {})").format(bound)
-                                                                       if bound else "")
-        return tr("'{}' is georeferenced but NOT VERIFIED; check it before use.").format(job.target_name)
+            bound = error_text(job, result, v.error_bound_px, short=True)
+            return tr("'{}' verified{}.").format(job.target_name, tr(", within {}").format(bound) if bound else "")
+        return tr("'{}' NOT VERIFIED; check it before use.").format(job.target_name)
 
     def show_details(self, ended):
         QMessageBox.information(self.iface.mainWindow(), TITLE, details_text(ended))
@@ -205,15 +202,19 @@ class AutoGeoreference:
 
 
 
-def error_text(job, result, value_px) -> str:
+def error_text(job, result, value_px, short=False) -> str:
     """A length in reference px as a person reads it: '1.4 m on the ground, 0.6 px of 'scan'' (each
-    part when known), else in the reference's pixels; '' when missing."""
+    part when known; ``short``: '1.4 m (0.6 px)', for the message bar), else in the reference's pixels;
+    '' when missing."""
     from ..core.outputs.scale import ground_metres, reference_px_name, target_px
 
     if value_px is None or value_px != value_px:
         return ""
     parts = []
     metres, pixels = ground_metres(result, value_px), target_px(result, value_px)
+    if short and metres is not None:
+        return (f"{metres:.1f} m" if metres >= 0.95 else f"{metres:.2f} m") + (
+            f" ({pixels:.1f} px)" if pixels is not None else "")
     if metres is not None:
         parts.append(tr("{:.1f} m on the ground").format(metres) if metres >= 0.95 else
                      tr("{:.2f} m on the ground").format(metres))
@@ -253,7 +254,7 @@ def details_text(ended: Ended) -> str:
             tr(v.verdict), v.n_agree, v.n_sites, error_text(job, result, v.error_bound_px) or "–",
             error_text(job, result, v.tolerance_px)))
         lines += [f"  – {reason}" for reason in v.reasons]
-    if not result.verified:
+    if not result.verified and ended.write_s is None:  # once kept, what may help is past
         from ..core.advice import advice  # the engine: not when the plugin loads
 
         lines.append(tr("What may help:"))

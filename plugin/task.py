@@ -96,7 +96,7 @@ class RegisterTask(_Ends, QgsTask):
             self.outcome = CANCELED
         if self.outcome in (WRITTEN, UNVERIFIED):  # the run ended with a verdict: its bar ends full
             self._progress(1.0, "done")
-        return self.outcome == WRITTEN
+        return self.outcome in (WRITTEN, UNVERIFIED)  # a run that ended with a verdict did not fail
 
     def _block_feedback(self):
         """A feedback that :meth:`cancel` cancels: the layer's read stops with the task."""

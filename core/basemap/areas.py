@@ -101,7 +101,9 @@ class AreaReader:
 
     def _tiles(self, bounds, z: int):
         tiles = tile_range(self.service, bounds, z)
-        return tiles, None if self.coverage is None else self.coverage.wanted(self.service, tiles)
+        if self.coverage is None or _range_key(tiles, None) in self.read_before:  # read whole before: again
+            return tiles, None
+        return tiles, self.coverage.wanted(self.service, tiles)
 
     def _plan(self, tiles, wanted) -> None:
         key = _range_key(tiles, wanted)

@@ -171,3 +171,26 @@ def test_a_wms_layer_smaller_than_the_area_is_searched_within_the_requests(case,
     stats = result.reference_service["fetch"]
     assert result.verified and _rmse_px(case, result) <= 1.0, result.notes
     assert stats["requests"] <= remote.SEARCH_REQUESTS, stats
+
+
+def test_areas_are_counted_against_the_budget_before_they_are_read(landsat, tmp_path):
+    """A reread area costs nothing; one past the budget is refused before any request, naming the cap; the
+    plan is the same from a cold or a warm cache (the same verdicts on a rerun)."""
+    from hamta.core.basemap.areas import AreaReader
+    from hamta.core.basemap.fetch import ServiceError
+
+    bounds = (-8.72e6, 2.80e6, -8.66e6, 2.86e6)  # EPSG:3857, inside the sample
+    with TileServer(landsat, zmax=12) as tiles:
+        service = parse_service(tiles.xyz())
+        plans = []
+        for _ in range(2):
+            reader = AreaReader(service, Fetcher(cache=str(tmp_path / "cache")), 30)
+            reader.read(bounds, 9, None)
+            first = reader.planned
+            assert reader.cost(bounds, 9) == 0
+            reader.read(bounds, 9, None)
+            assert reader.planned == first
+            with pytest.raises(ServiceError, match="above the cap of 30 requests"):
+                reader.read(bounds, 12, None)
+            plans.append((first, reader.planned))
+        assert plans[0] == plans[1] and plans[0][1] == first + PROBES, plans

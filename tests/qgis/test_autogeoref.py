@@ -124,14 +124,20 @@ def test_one_click_georeferences_the_selected_raster_on_the_basemap(session, mon
     [task] = plugin.autogeoref.tasks
     seen, bars = [], []
     wait_for_tasks(plugin.autogeoref, seen=seen, bars=bars)  # about 8 s here
-    assert any(t.startswith("Auto-georeference 'scan': fetching tiles ") for t in seen), seen
+    assert any(re.match(r"Auto-georeference 'scan': zoom \d+: fetching tiles ", t) for t in seen), seen
+    assert any(t.startswith("Auto-georeference 'scan': place 1: ") for t in seen), seen  # each part named
     assert len({t for t in seen if t.startswith("Auto-georeference 'scan': ")}) >= 4, seen  # stages as they go
-    # The bar only moves forward and ends full; the tile counter counts on over the run, never restarting.
+    # The bar only moves forward and ends full; each part's tile counter counts on, never restarting.
     assert bars and bars == sorted(bars) and bars[-1] == 100, bars
-    counts = [tuple(map(int, re.search(r"fetching tiles (\d+)/(\d+)$", t).groups())) for t in seen
-              if "fetching tiles" in t]
-    assert [c[0] for c in counts] == sorted(c[0] for c in counts) and counts[-1][0] > 1, counts
-    assert all(done <= total for done, total in counts), counts
+    counts = {}
+    for t in seen:
+        found = re.search(r": (.*)fetching tiles (\d+)/(\d+)$", t)
+        if found:
+            counts.setdefault(found.group(1), []).append((int(found.group(2)), int(found.group(3))))
+    assert counts and any(c[-1][0] > 1 for c in counts.values()), counts
+    for part in counts.values():
+        assert [c[0] for c in part] == sorted(c[0] for c in part), counts
+        assert all(done <= total for done, total in part), counts
 
     layers = {layer.source(): layer for layer in QgsProject.instance().mapLayers().values()}
     raster, gcps = layers[os.path.join(folder, "registered.tif")], layers[os.path.join(folder, "gcps.gpkg") +
@@ -144,8 +150,8 @@ def test_one_click_georeferences_the_selected_raster_on_the_basemap(session, mon
     with rasterio.open(raster.source()) as ds:
         assert ds.crs.to_epsg() == 3857
     [(level, text, buttons)] = messages(iface)
-    assert level == Qgis.Success and text.startswith("'scan' is georeferenced and verified (error within "), text
-    assert re.search(r"within [0-9.]+ m on the ground, [0-9.]+ px of 'scan'\)\.$", text), text  # which pixels
+    assert level == Qgis.Success and text.startswith("'scan' verified, within "), text
+    assert len(text) <= 60 and re.search(r"within [0-9.]+ m \([0-9.]+ px\)\.$", text), text  # fits; ground and own px
     assert buttons == ["Details", "Open report", "Open the GCPs in the Georeferencer"]
 
     opened, shown = [], []
@@ -268,8 +274,8 @@ def test_an_unverified_result_is_said_in_one_short_line_and_kept_without_searchi
     assert task.outcome == "unverified" and bars == sorted(bars) and bars[-1] == 100, (task.outcome, bars)
     assert files(job.folder) == ["report.html", "report.json"]
     [(level, text, buttons)] = messages(iface)
-    assert level == Qgis.Warning and len(text) <= 80 and "chance" not in text, text  # fits the bar, plain words
-    assert text == "Not verified: 'scan' was not placed with confidence, so nothing was added."
+    assert level == Qgis.Warning and len(text) <= 60 and "chance" not in text, text  # fits the bar, plain words
+    assert text == "'scan' not verified; nothing added."
     assert buttons == ["Details", "Keep anyway", "Open report"]
     assert not QgsProject.instance().mapLayersByName("scan (georeferenced)")
 
@@ -293,7 +299,7 @@ def test_an_unverified_result_is_said_in_one_short_line_and_kept_without_searchi
     wait_for_tasks(plugin.autogeoref, bars=bars)
     assert keeping.outcome == "written" and bars == sorted(bars) and bars[-1] == 100, bars
     assert files(job.folder) == ["gcps.gpkg", "gcps.points", "registered.tif", "report.html", "report.json"]
-    [raster] = QgsProject.instance().mapLayersByName("scan (georeferenced, NOT VERIFIED)")
+    [raster] = QgsProject.instance().mapLayersByName("NOT VERIFIED scan (georeferenced)")  # seen in a narrow panel
     assert raster.source() == os.path.join(job.folder, "registered.tif") and raster.isValid()
     report = json.loads(pathlib.Path(job.folder, "report.json").read_text())
     assert report["quality"]["verdict"] == v.verdict != "verified" and report["request"]["accept_unverified"] is True
@@ -304,11 +310,12 @@ def test_an_unverified_result_is_said_in_one_short_line_and_kept_without_searchi
     with rasterio.open(raster.source()) as ds:
         assert ds.tags()["HAMTA_VERDICT"] == v.verdict
     [(level, text, buttons)] = messages(iface)
-    assert level == Qgis.Warning and text == "'scan' is georeferenced but NOT VERIFIED; check it before use."
+    assert level == Qgis.Warning and text == "'scan' NOT VERIFIED; check it before use."
     assert buttons == ["Details", "Open report", "Open the GCPs in the Georeferencer"]
     iface.bar.items()[0].findChildren(QPushButton)[0].click()
     assert f"Time: {task.elapsed_s:.1f} s" in shown[-1] and "Kept after the run: the outputs were written in " in \
         shown[-1]
+    assert "What may help" not in shown[-1]  # kept: the advice is past
 
 
 def test_one_name_for_keeping_unverified_results(session, provider):
