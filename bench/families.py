@@ -29,14 +29,15 @@ from .synthetic import make_landscape
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
             "should-fail", "collar") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch",
                                                                           "basemap", "basemap-real", "speed",
-                                                                          "years-apart")
+                                                                          "years-apart", "basemap-requests")
 # The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
 # output writer against gdalwarp, no registration cases of its own), 'nonrigid' (local distortion, for the
 # local correction), 'batch' (throughput on a Dask cluster, no cases of its own) and 'basemap' (onto a local
 # tile server, a study of its own: hamta.bench.goals.basemap; 'basemap-real' onto tiles of another date:
 # hamta.bench.goals.basemap_real), 'speed' (whole runs against each peer on
 # its own ground: hamta.bench.goals.speed) and 'years-apart' (dates years apart, georeferencing moved:
-# hamta.bench.goals.years_apart) run on request.
+# hamta.bench.goals.years_apart) and 'basemap-requests' (the requests a search sends on a layer with data
+# everywhere: hamta.bench.goals.basemap_requests) run on request.
 DEFAULT_FAMILIES = FAMILIES[:11]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
@@ -287,7 +288,8 @@ _SPECS = {"crops": _crops, "should-fail": _should_fail, "collar": _collar,
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
           "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: [], "basemap": lambda quick: [],
-          "basemap-real": lambda quick: [], "speed": lambda quick: [], "years-apart": lambda quick: []}
+          "basemap-real": lambda quick: [], "speed": lambda quick: [], "years-apart": lambda quick: [],
+          "basemap-requests": lambda quick: []}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -436,6 +438,10 @@ def available(family: str, data_dir: str) -> bool:
         from .goals.years_apart import available as years_available
 
         return years_available(data_dir)
+    if family == "basemap-requests":
+        from .goals.basemap_requests import available as requests_available
+
+        return requests_available(data_dir)
     return True
 
 

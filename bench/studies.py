@@ -6,6 +6,7 @@ def all_studies():
     """Every study, the papers' reproductions first."""
     from .goals.basemap import STUDY as basemap
     from .goals.basemap_real import STUDY as basemap_real
+    from .goals.basemap_requests import STUDY as basemap_requests
     from .goals.batch import STUDY as batch
     from .goals.large import STUDY as large
     from .goals.speed import STUDY as speed
@@ -16,4 +17,5 @@ def all_studies():
     from .reproductions.rilbp import STUDY as rilbp
     from .reproductions.sibrif import STUDY as sibrif
 
-    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, speed, years_apart]
+    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, basemap_requests,
+            speed, years_apart]

@@ -9,6 +9,8 @@
 - coverage as real layers have it: ``/sparse/…`` answers 404 (even columns) or 204 (odd) instead of a
   transparent tile where the raster has no data, as a ``gdal2tiles`` folder does; ``/islands/…`` also
   answers 404 to every tile wholly inside ``hole`` (EPSG:3857 bounds), at every zoom;
+- ``/texture/…``: a world basemap's worst case, every tile of every zoom an image (a blurred noise, the same
+  for the same tile), the raster nowhere;
 - faults: ``/missing/…`` answers 404 to every tile, ``/holes/…`` to every third, ``/broken/…`` 500,
   ``/html/…`` an HTML page with status 200, ``/flaky/…`` 503 the first time each tile is asked
   for, ``/slow/…`` waits ``slow_s`` seconds before answering.
@@ -116,6 +118,9 @@ class TileServer:
                 return _send(handler, 503, b"busy", "text/plain")
         if style == "slow":
             time.sleep(self.slow_s)
+        if style == "texture":
+            noise = np.random.default_rng([z, x, y]).integers(0, 256, (256, 256, 3), dtype=np.uint8)
+            return _send(handler, 200, cv2.imencode(".png", cv2.GaussianBlur(noise, (7, 7), 2.0))[1].tobytes())
         size = 2 * HALF_WORLD / 2 ** z
         bbox = [-HALF_WORLD + x * size, HALF_WORLD - (y + 1) * size, -HALF_WORLD + (x + 1) * size,
                 HALF_WORLD - y * size]

@@ -233,6 +233,7 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
             f"read at zoom{'s' if len(searched) > 1 else ''} {', '.join(map(str, searched))}): "
             + (f"none of the {len(places)} places tried registered ({_outcomes(places)}). " if places else
                "no place in it looked enough like the target. ")
+            + "".join(f"{n[0].upper()}{n[1:]}. " for n in notes if "was not searched" in n or n == spent)
             + "Zoom the map closer to where the target is (a search area a few times its size), and check that the "
               "area holds it; a target that is mirrored, or whose ground has mostly changed since, may not be found.",
             0, MIN_INLIERS) from None

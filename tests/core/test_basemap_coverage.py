@@ -194,3 +194,18 @@ def test_areas_are_counted_against_the_budget_before_they_are_read(landsat, tmp_
                 reader.read(bounds, 12, None)
             plans.append((first, reader.planned))
         assert plans[0] == plans[1] and plans[0][1] == first + PROBES, plans
+
+
+def test_a_layer_with_data_everywhere_is_searched_within_the_requests(case, server, tmp_path, monkeypatch):
+    """The worst case for the budget: every tile of every zoom an image (noise), an area 30 times the photo's
+    side, a fetcher that allows 100 requests, and nothing found at the first zoom (the locating stubbed out):
+    the next zoom would leave too few requests for the places, so it is left out and named; not found,
+    within the requests."""
+    monkeypatch.setattr(remote, "candidates", lambda *args, **kwargs: iter(()))
+    fetcher = Fetcher(cache=str(tmp_path / "cache"), max_requests=100)
+    with pytest.raises(InsufficientMatchesError) as info:
+        run(case.path, server.xyz("texture"), None, fetcher=fetcher,
+            options=RegisterOptions(extent=case.search_area(30.0 ** 2)))
+    assert 0 < fetcher.stats.requests <= 100, fetcher.stats
+    said = str(info.value)
+    assert "Zoom 7 was not searched: its" in said and "of the 100 requests a search may send" in said, said
