@@ -155,7 +155,7 @@ LAYERS = (
     ("core.extent",),
     ("core.options", "core.progress", "core.memory", "core.blas", "core.fourier"),
     ("core.parallel",),
-    ("core.io", "core.preprocess", "core.detectors", "core.estimation", "core.basemap"),
+    ("core.io", "core.preprocess", "core.detectors", "core.estimation", "core.basemap", "core.grid"),
     ("core.descriptors",),
     ("core.matching",),
     ("core.refine", "core.verify"),
