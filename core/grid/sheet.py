@@ -91,7 +91,7 @@ def fit_sheet(grey: np.ndarray, hints: Sequence, crs: str, grid_crs: Optional[st
             continue
         found = _consistent(found, step)
         found = _trimmed(found, min(order, _order_by_count(len(found))))
-        order = _order(found, grey.shape)
+        order = _order(found)
         forward, backward = _fit(found[:, :2], found[:, 2:4], order), _fit(found[:, 2:4], found[:, :2], order)
         residual = _residual(found, backward)
     if len(found) < 3:
@@ -100,9 +100,12 @@ def fit_sheet(grey: np.ndarray, hints: Sequence, crs: str, grid_crs: Optional[st
                                        len(found), 6)
     found = _trimmed(found, order)
     order = _order(found, grey.shape)
-    loo = _loo(found, order)
+    found = _without_stray_lines(found, order)
+    order = _order(found, grey.shape)
+    loo = _held_out_lines(found, order)[0]
     spread = _spread(found[:, :2], grey.shape)
-    notes = [f"{len(found)} crossings of the printed grid found (step {step:g}); leave-one-out {loo:.2f} px with "
+    notes = [f"{len(found)} crossings of the printed grid found (step {step:g}); each grid line predicted from the "
+             f"others: {loo:.2f} px RMS with "
              f"the {MODELS[order - 1][0]} model; they cover {spread:.0%} of the sheet"]
     backward = _fit(found[:, 2:4], found[:, :2], order)
     off = np.hypot(*(_apply(backward, hint_xy) - hints[:, :2]).T)
@@ -238,11 +241,12 @@ def _local(known, gx, gy, step, pts):
     return _apply(_fit(near[:, 2:4], near[:, :2], 1), pts)
 
 
-def _order(found, shape) -> int:
+def _order(found, shape=None) -> int:
     """The model order with the smallest leave-one-out error (a higher order only when 10 % better, on enough
-    crossings covering enough of the sheet of ``shape``)."""
+    crossings; for the sheet's model, ``shape`` given, covering enough of it: while the crossings are being
+    found, the model need only reach the next ring)."""
     best, best_loo = 1, _loo(found, 1)
-    spread = _spread(found[:, :2], shape)
+    spread = 1.0 if shape is None else _spread(found[:, :2], shape)
     for _, order, least, cover in MODELS[1:]:
         if len(found) < least or spread < cover:
             break
@@ -263,6 +267,37 @@ def _loo(found, order) -> float:
         coef = _fit(found[keep, 2:4], found[keep, :2], order)
         errors.append(np.hypot(*(_apply(coef, found[i:i + 1, 2:4])[0] - found[i, :2])))
     return float(np.sqrt(np.mean(np.square(errors))))
+
+
+def _held_out_lines(found, order):
+    """(RMS in scan px, {line: RMS}) of each crossing predicted by the model fitted without its grid line:
+    each line of constant grid x and of constant grid y left out in turn. A line taken on the sheet's frame
+    or a border, shifted as a whole, fits with the others crossing by crossing but not as a line."""
+    errors, per_line = [], {}
+    for axis in (4, 5):
+        for value in np.unique(found[:, axis]):
+            on = found[:, axis] == value
+            if (~on).sum() <= MODELS[order - 1][2]:
+                return math.inf, {}
+            coef = _fit(found[~on, 2:4], found[~on, :2], order)
+            e = np.hypot(*(_apply(coef, found[on, 2:4]) - found[on, :2]).T)
+            errors += list(e)
+            per_line[(axis, value)] = float(np.sqrt(np.mean(e ** 2)))
+    return float(np.sqrt(np.mean(np.square(errors)))), per_line
+
+
+def _without_stray_lines(found, order) -> np.ndarray:
+    """``found`` without the grid lines that the others predict worst, one at a time, while one is beyond
+    1.5 px and 3 times the median line."""
+    while len(found) > 2 * MODELS[order - 1][2]:
+        _, per_line = _held_out_lines(found, order)
+        if not per_line:
+            break
+        (axis, value), worst = max(per_line.items(), key=lambda kv: kv[1])
+        if worst <= max(1.5, 3.0 * float(np.median(list(per_line.values())))):
+            break
+        found = found[found[:, axis] != value]
+    return found
 
 
 def _trimmed(found, order) -> np.ndarray:
