@@ -36,6 +36,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
+from collections import Counter
 from functools import partial
 
 import numpy as np
@@ -177,8 +178,10 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
                 break
         try:
             path = reader.read(bounds, z, span.span(0.0, 0.3))
+        except RegistrationCanceled:
+            raise
         except HamtaError as exc:
-            if not searched or isinstance(exc, RegistrationCanceled):
+            if not searched:
                 raise
             notes.append(f"zoom {z} was not searched: {reader.plain(exc)}")
             continue
@@ -211,9 +214,9 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
                 attempt, label = partial(_register_placed, info, reader, placed, bounds), f"place {len(placed_at)}"
             try:
                 result, z_fine = attempt(budgeted(), register_onto, ahead(label, MAX_PLACES + 1 - len(placed_at)))
+            except RegistrationCanceled:
+                raise
             except HamtaError as exc:
-                if isinstance(exc, RegistrationCanceled):
-                    raise
                 tried(what, *((exc.zoom, str(exc)) if isinstance(exc, _PlaceFailed) else (z, _failure(reader, exc))))
                 continue
             tried(what, z_fine, _checked(result))
@@ -271,10 +274,7 @@ def _checked(result) -> str:
 
 def _outcomes(places) -> str:
     """How many places ended each way, most common first."""
-    counts = {}
-    for p in places:
-        counts[p["outcome"]] = counts.get(p["outcome"], 0) + 1
-    return "; ".join(f"{n} {outcome}" for outcome, n in sorted(counts.items(), key=lambda kv: -kv[1]))
+    return "; ".join(f"{n} {outcome}" for outcome, n in Counter(p["outcome"] for p in places).most_common())
 
 
 MAX_PLACES = 6  # places registered in all
@@ -298,9 +298,9 @@ def _register_whole_area(info, reader: AreaReader, bounds, z: int, options: Regi
     try:
         fine, z_fine = _register_placed(info, reader, _placed_from(coarse, info), bounds, options, register_onto,
                                         monitor.span(0.5, 1.0))
-    except HamtaError as exc:
-        if isinstance(exc, RegistrationCanceled):
-            raise
+    except RegistrationCanceled:
+        raise
+    except HamtaError:
         return coarse, z
     if result_rank(fine) > result_rank(coarse):
         return fine, z_fine
@@ -356,9 +356,9 @@ def _register_placed(info, reader: AreaReader, placed, bounds, options: Register
         path = reader.read(around, z, monitor.span(0.0, 0.2))
         z = reader.zooms[-1]
         result = register_onto(path, monitor.span(0.2, 1.0), options=options, placed=placed, short=True)
+    except RegistrationCanceled:
+        raise
     except HamtaError as exc:
-        if isinstance(exc, RegistrationCanceled):
-            raise
         raise _PlaceFailed(_failure(reader, exc), z) from exc
     if not _overlaps(result, info, bounds):
         raise _PlaceFailed("the model puts the target outside the search area; not taken", z)

@@ -62,7 +62,7 @@ class AreaReader:
         data at ``z``, :data:`COARSER_BY` zooms coarser and coarser until one has (else the area has none),
         then at the finest zoom with data there, found by bisection."""
         remembered = remembered_finest(self.fetcher, self.service, _centre(bounds))
-        asked = z = min(z, self.finest, self.finest if remembered is None else remembered)
+        z = min(z, self.finest, self.finest if remembered is None else remembered)
         try:
             return self._read(bounds, z, monitor)
         except NoTiles:
@@ -77,16 +77,15 @@ class AreaReader:
             except NoTiles:
                 if coarse <= self.service.zmin:
                     raise NoTiles(f"The map service {self.service.label} has no data in the search area at any "
-                                  f"zoom from {self.service.zmin} to {asked} (every tile was answered 'HTTP 404 Not "
+                                  f"zoom from {self.service.zmin} to {z} (every tile was answered 'HTTP 404 Not "
                                   "Found', 'HTTP 204 No Content', empty or transparent).") from None
-        self.coverage = Coverage.of(path, self.service)
         self.planned += PROBES
         point = self.coverage.nearest_data(*_centre(bounds))
         self.finest = self.known = finest_zoom(self.service, self.fetcher, point, coarse, z - 1,
                                                also=_centre(bounds))
         if self.finest == coarse:
             return path
-        self.zooms.pop()
+        self.zooms.pop()  # the coarse area only told where the data is; the finest zoom's is the one read
         return self._read(bounds, self.finest, monitor)
 
     def _read(self, bounds, z: int, monitor) -> str:

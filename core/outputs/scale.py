@@ -18,11 +18,12 @@ from typing import Optional, Tuple
 
 import numpy as np
 
+from ..basemap.services import HALF_WORLD
 from ..estimation.models import local_jacobian
 from ..io.raster import RasterInfo
 from .html_text import _num
 
-WEB_MERCATOR_RADIUS = 6378137.0  # m: the sphere of EPSG:3857's formulas
+WEB_MERCATOR_RADIUS = HALF_WORLD / math.pi  # m: the sphere of EPSG:3857's formulas
 METRE = ("metre", "meter")
 UNIT_SYMBOLS = {"metre": "m", "meter": "m", "kilometre": "km", "degree": "°", "foot": "ft",
                 "US survey foot": "US ft", "Clarke's foot": "Clarke's ft"}
