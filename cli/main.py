@@ -39,6 +39,13 @@ def cmd_register(args) -> int:
 
     options, output = settings_from(args)
     _outside_the_cache(args.out)
+    method, params = args.method, _pairs(args.param)
+    if args.reference is None or method == "grid":
+        if args.reference is not None:
+            raise ValueError("--method grid georeferences a sheet by its own printed grid: give no --reference")
+        method, params = "grid", dict(params, hints=args.gcps)
+    elif args.gcps is not None:
+        raise ValueError("--gcps gives hints to a sheet georeferenced by its own grid: leave out --reference")
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format, overwrite=args.overwrite,
                                   only=None if args.outputs is None else args.outputs.split(","))
     if args.scheduler:
@@ -49,7 +56,7 @@ def cmd_register(args) -> int:
         cluster = contextlib.nullcontext()
     try:
         with cluster as map_chunks:
-            result, written = run(args.target, args.reference, paths, method=args.method, params=_pairs(args.param),
+            result, written = run(args.target, args.reference, paths, method=method, params=params,
                                   options=options, output=output, accept_unverified=args.accept_unverified,
                                   progress=ProgressBar(not args.quiet), map_chunks=map_chunks)
     except UnverifiedResult as exc:
@@ -257,13 +264,22 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"hamta {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
 
-    r = sub.add_parser("register", help="register a target raster onto a reference raster",
-                       description="Register TARGET onto REFERENCE and write the georeferenced outputs into OUT.")
-    r.add_argument("--reference", required=True, help="georeferenced reference raster (its CRS is the map; one "
+    r = sub.add_parser("register", help="register a target raster onto a reference raster, or a scanned sheet by its "
+                                        "own printed grid",
+                       description="Register TARGET onto REFERENCE (or, without one, by the sheet's own printed grid) "
+                                   "and write the georeferenced outputs into OUT.")
+    r.add_argument("--reference", default=None, help="georeferenced reference raster (its CRS is the map; one "
                                                       "without georeferencing needs --pixel-mode); or a map service: "
                                                       "a tile URL such as 'https://host/{z}/{x}/{y}.png', a QGIS XYZ "
                                                       "or WMS layer source, or a GDAL string (/vsicurl/..., WMTS:..., "
-                                                      "WCS:..., a GDAL WMS XML file); see --extent")
+                                                      "WCS:..., a GDAL WMS XML file); see --extent. Without it, a "
+                                                      "scanned sheet is georeferenced by its own printed grid: give "
+                                                      "--crs (the sheet's) and --gcps")
+    r.add_argument("--gcps", default=None, metavar="HINTS.points",
+                   help="without --reference: two or three crossings of the sheet's printed grid placed roughly with "
+                        "their coordinates, as the QGIS Georeferencer saves them (mapX, mapY: the printed coordinates, "
+                        "in degrees or in the grid's metres; --param step=... and --param grid_crs=... where they do "
+                        "not tell the grid)")
     r.add_argument("--target", required=True, help="raster to georeference")
     r.add_argument("--out", required=True, help="output folder (created if missing)")
     r.add_argument("--method", default="auto",

@@ -30,6 +30,15 @@ def advice(result) -> List[Advice]:
     if v is None or v.verified:
         return []
     options, tips = result.options, []
+    if result.plan.mode == "grid":
+        held_out = _finite(result.diagnostics["grid"]["held_out_rms_px"])
+        return [Advice("tolerance_px", math.ceil(held_out * 10) / 10 if held_out else 5.0,
+                       "the sheet's printed grid is followed only this well (its paper, its drawing): ask for that "
+                       "accuracy, in scan px, if it is enough"),
+                Advice("model", "tps", "a sheet whose paper is warped or folded may need a thin plate spline, "
+                       "held out line by line like the others"),
+                Advice("accept_unverified", True, "to write the outputs anyway, marked NOT VERIFIED, once the "
+                       "report's overlays look right")]
     if result.plan.mode == "georeferenced":
         tips.append(Advice("target_georef", "ignore", "the target's own georeferencing, the starting point, may be "
                            "too far off"))

@@ -29,6 +29,7 @@ from .reference import RasterReference, resolve_reference
 from .result import RegistrationResult, params_dict
 
 REGISTER_SHARE = 0.8
+GRID = "grid"  # the sheet's own printed grid, no reference (hamta.core.grid)
 
 
 @run_scope()
@@ -53,25 +54,35 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
         The result did not verify and ``accept_unverified`` is False (its report is written).
     """
     monitor = Monitor(progress, is_canceled)
-    if method == AUTO:
+    by_grid = method == GRID or reference is None
+    if by_grid:
+        from .grid.register import GridParams
+
+        params = GridParams.make(params, output)  # the hints and the sheet's CRS, checked before any work
+    elif method == AUTO:
         if params:
             raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
     else:
         get_method(method).make_params(params)  # a wrong name or parameter fails before any work
-    reference = resolve_reference(reference)
+    reference = None if by_grid else resolve_reference(reference)
     raster = isinstance(reference, RasterReference)
     described_s = time.perf_counter()
     if paths is not None and paths.as_dict():
         inputs = threaded(lambda job: open_raster(*job), [(target, "target")] + ([(reference.path, "reference")]
                                                                                  if raster else []))
-        check_destinations(paths, inputs)
+        check_destinations(paths, inputs, [] if not by_grid else [params.hints])
         if paths.raster:
             check_output_options(output, inputs[0], paths.raster)
     described_s = time.perf_counter() - described_s
-    request = run_request(method, params, options, accept_unverified)
+    request = run_request(GRID if by_grid else method, params, options, accept_unverified)
     share = REGISTER_SHARE if paths is not None and paths.as_dict() else 1.0
     stage = monitor.span(0.0, share)
-    if not raster:
+    if by_grid:
+        from .grid.register import register_grid
+
+        result = register_grid(target, params.crs, params.hints, grid_crs=params.grid_crs, step=params.step,
+                               options=options, progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled)
+    elif not raster:
         from .remote import register_remote  # its network code is imported only for a map service
 
         result = register_remote(target, reference.service, options, stage, fetcher=fetcher, method=method,
@@ -113,13 +124,14 @@ def run_request(method: str, params, options: RegisterOptions, accept_unverified
                                   "options": dataclasses.asdict(options), "accept_unverified": accept_unverified}))
 
 
-def check_destinations(paths: OutputPaths, inputs) -> None:
-    """Before any work: every destination can be written, and none is an input or a file an input
-    reads (a VRT's sources, sidecar files)."""
+def check_destinations(paths: OutputPaths, inputs, others=()) -> None:
+    """Before any work: every destination can be written, and none is an input, a file an input
+    reads (a VRT's sources, sidecar files) or one of ``others`` (paths read too: a sheet's hints)."""
     paths.check()
     for folder in {os.path.dirname(os.path.abspath(p)) for p in paths.as_dict().values()}:
         check_creatable_folder(folder)
     read = {os.path.realpath(f) for info in inputs for f in input_files(info)}
+    read |= {os.path.realpath(f) for f in others if isinstance(f, (str, os.PathLike))}
     for kind, path in paths.as_dict().items():
         if os.path.realpath(path) in read:
             raise OutputError(f"The output '{path}' ({kind}) is one of the input files or a file they read; "

@@ -30,6 +30,18 @@ AUTO_ALGORITHM = Entry(
         "unverified results' is set; the log lists every method tried, its verdict and its time. The other "
         "algorithms of this group run one method each, for experts."))
 BATCH_ALGORITHM = Entry("batchregister", QT_TRANSLATE_NOOP("BatchRegisterAlgorithm", "Batch register"))
+GRID_ALGORITHM = Entry(
+    "georeferencebygrid", QT_TRANSLATE_NOOP("RegisterAlgorithm", "Georeference a scanned map by its grid"),
+    QT_TRANSLATE_NOOP(
+        "RegisterAlgorithm",
+        "Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Place "
+        "two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as "
+        "printed (degrees, or metres of the national grid) and save the GCP points (.points); choose the sheet's "
+        "CRS. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a "
+        "pixel; each crossing becomes a GCP. The model (affine, or a polynomial where the projection bends the "
+        "lines) is checked by predicting each grid line from the others: a result is verified only when that "
+        "check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, "
+        "saying why."))
 
 
 def method_entries() -> Tuple[Entry, ...]:
@@ -48,4 +60,4 @@ def method_entries() -> Tuple[Entry, ...]:
 
 
 def algorithm_entries() -> Tuple[Entry, ...]:
-    return (AUTO_ALGORITHM, *method_entries(), BATCH_ALGORITHM)
+    return (AUTO_ALGORITHM, *method_entries(), GRID_ALGORITHM, BATCH_ALGORITHM)

@@ -87,12 +87,14 @@ def _parameter(f, spec, kind: type, default, bands: bool):
 
 def option_values(alg, parameters, context) -> dict:
     """Each option's value keyed by its Processing name: an enum index, a number, a flag, text, a CRS as
-    text; None where the user left an optional parameter empty."""
+    text; None where the user left an optional parameter empty; nothing for an option ``alg`` does not offer."""
     values = {}
     for cls in OPTION_CLASSES:
         for f, spec in option_fields(cls):
             key = processing_key(f, spec)
             definition = alg.parameterDefinition(key)
+            if definition is None:  # an option this algorithm does not offer: its default
+                continue
             raw = parameters.get(key)
             if (raw is None or raw == "") and definition.defaultValue() is None:
                 values[key] = None

@@ -172,6 +172,7 @@ class HamtaProvider(QgsProcessingProvider):
             try:  # the engine is imported here, once its requirements are known to import
                 from ..core.methods import all_methods
                 from .batch_algorithm import BatchRegisterAlgorithm
+                from .grid_algorithm import GridAlgorithm
                 from .register_algorithm import AUTO, RegisterAlgorithm
             except Exception as exc:  # never a traceback at plugin load: the algorithms say what failed
                 self.unavailable_reason, self.unavailable = "engine failed to load", engine_error_message(exc)
@@ -181,7 +182,8 @@ class HamtaProvider(QgsProcessingProvider):
                                                        self.unavailable))
             return
         methods = [name for name, method in all_methods().items() if method.toolbox is not None]
-        for alg in [RegisterAlgorithm(AUTO), *map(RegisterAlgorithm, methods), BatchRegisterAlgorithm()]:
+        for alg in [RegisterAlgorithm(AUTO), *map(RegisterAlgorithm, methods), GridAlgorithm(),
+                    BatchRegisterAlgorithm()]:
             self.addAlgorithm(alg)
 
     def supportedOutputRasterLayerExtensions(self):

@@ -139,7 +139,10 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         for f in self._fields():
             p = self._method_parameter(f)
             self.addParameter(p if f.metadata.get("basic") else advanced(p))
+        self._add_outputs()
 
+    def _add_outputs(self):
+        """The outputs of every registration: the raster, the GCPs (layer, .points, VRT), the reports, the figures."""
         self.addParameter(QgsProcessingParameterRasterDestination(self.OUTPUT, self.tr("Georeferenced raster")))
         self.addParameter(QgsProcessingParameterVectorDestination(
             self.GCP_LAYER, self.tr("GCP points"), QgsProcessing.TypeVectorPoint, optional=True, createByDefault=True))
@@ -224,21 +227,19 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         return v
 
     def processAlgorithm(self, parameters, context, feedback):
-        method = self.method()
         target = self._raster_path(parameters, self.TARGET, context)
         values = self._values(parameters, context)
         options, paths, output = register_settings(values)
         try:
-            reference = reference_source(self._layer(parameters, self.REFERENCE, context), options.extent, target,
-                                         options.max_working_pixels)
-        except HamtaError as exc:
-            raise QgsProcessingException(self.explain(exc)) from None
+            reference = self._reference(parameters, context, options, target)
+            params = self._run_arguments(values, output)
+        except (HamtaError, ValueError) as exc:
+            raise QgsProcessingException(self.explain(exc) if isinstance(exc, HamtaError) else str(exc)) from None
         if paths.gpkg and not paths.gpkg.lower().endswith(".gpkg"):
             raise QgsProcessingException(self.tr("GCP points are written to a GeoPackage: choose a .gpkg file (got "
                                                  "'{}').").format(values[self.GCP_LAYER]))
 
         progress = feedback_progress(feedback)
-        params = {} if method is None else method_values(method, values)
         try:
             result, written = run(target, reference, paths, method=self.method_name, params=params, options=options,
                                   output=output, accept_unverified=values[self.KEEP_UNVERIFIED], progress=progress,
@@ -272,6 +273,16 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
                    "RMSE_PX": s.rmse_px, "RMS_LOO_PX": s.rms_loo_px,
                    "N_GCPS": s.n_gcps, "VERDICT": result.verification.verdict, "METHOD": result.method}
         return {k: v for k, v in results.items() if v is not None}
+
+    def _reference(self, parameters, context, options, target):
+        """What the target is registered onto (see :func:`hamta.processing.reference.reference_source`)."""
+        return reference_source(self._layer(parameters, self.REFERENCE, context), options.extent, target,
+                                options.max_working_pixels)
+
+    def _run_arguments(self, values, output):
+        """The method parameters :func:`hamta.core.runner.run` is given."""
+        method = self.method()
+        return {} if method is None else method_values(method, values)
 
     def explain(self, exc):
         """The error's message, naming the parameter that lets the user go on as this dialog shows it."""

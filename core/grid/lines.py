@@ -30,22 +30,29 @@ def line_map(grey: np.ndarray, width_px: int = LINE_WIDTH_PX) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Crossing:
-    """Where two lines cross: ``xy`` (scan px) and how clearly each line stands out (``strength``, the
-    weaker of the two profiles' prominences)."""
+    """Where two lines cross: ``xy`` (scan px), how clearly each line stands out (``strength``, the weaker of
+    the two profiles' prominences) and how much ink the weaker line holds (``ink``, its peak above the
+    profile's median, in the line map's units)."""
 
     xy: tuple
     strength: float
+    ink: float = 0.0
 
 
-def crossing(lines: np.ndarray, xy, directions, radius: float, along: Optional[float] = None) -> Optional[Crossing]:
+def crossing(source, xy, directions, radius: float, along: Optional[float] = None) -> Optional[Crossing]:
     """The crossing nearest ``xy`` of two lines running along ``directions`` (two unit vectors, scan px):
-    each line is the sub-pixel peak of the :func:`line_map` ``lines`` averaged along it over ``along`` px
-    each way (a long strip: a grid line is long and straight, what else is drawn is not) at offsets up to
-    ``radius`` px across it. None where either line does not stand out (:data:`PROMINENCE`)."""
+    each line is the sub-pixel peak of the :func:`line_map` of ``source`` (a
+    :class:`hamta.core.grid.scan.LineSource`) averaged along it over ``along`` px each way (a long strip: a
+    grid line is long and straight, what else is drawn is not) at offsets up to ``radius`` px across it.
+    None where either line does not stand out (:data:`PROMINENCE`) or the strips leave the scan."""
     along = max(along or 3.0 * radius, radius)
-    found, strength = [], math.inf
+    window = source.around(xy, along + radius + 2)
+    if window is None:
+        return None
+    lines, x0, y0 = window
+    found, strength, ink = [], math.inf, math.inf
     for dx, dy in directions:
-        profile = _strip(lines, xy, (dx, dy), along, radius)
+        profile = _strip(lines, (xy[0] - x0, xy[1] - y0), (dx, dy), along, radius)
         if profile is None:
             return None
         offsets = (np.arange(len(profile)) - (len(profile) - 1) / 2) / STEPS_PER_PX
@@ -53,13 +60,13 @@ def crossing(lines: np.ndarray, xy, directions, radius: float, along: Optional[f
         if peak is None:
             return None
         found.append((peak[0] - (len(profile) - 1) / 2) / STEPS_PER_PX)
-        strength = min(strength, peak[1])
+        strength, ink = min(strength, peak[1]), min(ink, peak[2])
     (d1x, d1y), (d2x, d2y) = directions
     normals = np.array([[-d1y, d1x], [-d2y, d2x]], float)
     if abs(np.linalg.det(normals)) < 0.2:  # lines almost parallel: no crossing to find
         return None
     ox, oy = np.linalg.solve(normals, np.array(found))
-    return Crossing((xy[0] + ox, xy[1] + oy), strength)
+    return Crossing((xy[0] + ox, xy[1] + oy), strength, ink)
 
 
 STEPS_PER_PX = 2  # samples across a line per pixel
@@ -85,7 +92,8 @@ def _strip(lines, xy, direction, along: float, radius: float):
 
 
 def _profile_peak(profile: np.ndarray):
-    """(the index of the profile's peak, to a fraction, and its prominence) or None."""
+    """(the index of the profile's peak, to a fraction, its prominence and its height above the median) or
+    None."""
     median = np.median(profile)
     spread = np.median(np.abs(profile - median)) * 1.4826 + 1e-6
     i = int(np.argmax(profile))
@@ -95,4 +103,4 @@ def _profile_peak(profile: np.ndarray):
     left, mid, right = profile[i - 1], profile[i], profile[i + 1]
     denom = left - 2 * mid + right
     shift = 0.0 if denom >= 0 else 0.5 * (left - right) / denom
-    return i + shift, float(prominence)
+    return i + shift, float(prominence), float(profile[i] - median)

@@ -22,14 +22,16 @@ from typing import List, Optional, Sequence
 import numpy as np
 
 from ..errors import InputError, InsufficientMatchesError
-from .lines import crossing, line_map
+from .lattice import contrast, fit_lattice
+from .lines import crossing
+from .polynomial import apply_poly, fit_poly
+from .scan import LineSource
 
 HINT_PX = 0.15  # of the grid's spacing: how far from a crossing a hint may be placed
-SNAPPED_PX = 1.5  # px: how far the first model from the hints found on the scan is expected to be off nearby
 DEGREE_STEPS = (10, 5, 2, 1, 0.5, 1 / 3, 0.25, 1 / 6, 1 / 12, 1 / 24, 1 / 60)  # graticules: 10 degrees to 1'
 METRE_STEPS = (100000, 50000, 20000, 10000, 5000, 2000, 1000, 500, 200, 100)  # national grids
 MAX_CROSSINGS = 4000
-MIN_FIT = 6  # crossings found before the model is refitted on them (and one taken for a wrong line can be told)
+MIN_FIT = 6  # crossings a verified result needs (and one taken for a wrong line can be told)
 MODELS = (("affine", 1, 3, 0.0), ("polynomial-2", 2, 12, 0.5), ("polynomial-3", 3, 30, 0.8))  # name, order, least
 # crossings, least share of the sheet they must cover (a polynomial bends wildly beyond its points, and the whole
 # sheet is warped through it)
@@ -49,18 +51,34 @@ class SheetFit:
     verified: bool
     step: float
     notes: List[str] = field(default_factory=list)
+    held_out: Optional[np.ndarray] = None  # (n, 2) scan px: each crossing's error predicted without its grid line
+    spread: float = 0.0  # share of the sheet the crossings cover
+    nodes: int = 0  # crossings the lattice puts on the sheet
+    apart_px: Optional[float] = None  # the largest distance between the crossings' model and the lattice's
+    apart_limit_px: float = math.inf  # and how far they may be apart for a verified result
+    contrast: float = 0.0  # the lattice's ink over its lines moved by part of a step (see lattice.contrast)
 
     def to_crs(self, px: np.ndarray) -> np.ndarray:
         """Scan px (n, 2) -> ``crs`` coordinates, through the model fitted on every crossing found."""
-        return _apply(_fit(self.gcps[:, :2], self.gcps[:, 2:4], self.order), px)
+        return apply_poly(fit_poly(self.gcps[:, :2], self.gcps[:, 2:4], self.order), px)
+
+    def to_scan(self, xy: np.ndarray) -> np.ndarray:
+        """``crs`` coordinates (n, 2) -> scan px, through the model fitted on every crossing found."""
+        return apply_poly(fit_poly(self.gcps[:, 2:4], self.gcps[:, :2], self.order), xy)
 
 
-def fit_sheet(grey: np.ndarray, hints: Sequence, crs: str, grid_crs: Optional[str] = None,
-              step: Optional[float] = None, tolerance_px: float = 2.0) -> SheetFit:
+def fit_sheet(scan, hints: Sequence, crs: str, grid_crs: Optional[str] = None,
+              step: Optional[float] = None, tolerance_px: float = 2.0, progress=None) -> SheetFit:
     """Find the sheet's printed crossings from ``hints`` (rows of scan x, y, grid x, y) and fit the model
-    (see the module docstring). ``grey``: the scan (2-D). Raises :class:`InputError` for hints that do not
-    fit a grid, :class:`InsufficientMatchesError` when too few crossings are found."""
+    (see the module docstring). ``scan``: a :class:`LineSource`, or the scan as a grey 2-D array. Raises
+    :class:`InputError` for hints that do not fit a grid or a grid the hints do not find, and
+    :class:`InsufficientMatchesError` when too few crossings are found. ``progress``: a
+    :class:`hamta.core.progress.Monitor` (reports, and raises where the user cancelled)."""
     from pyproj import CRS, Transformer
+
+    from ..progress import Monitor
+
+    monitor = progress or Monitor(None, None)
 
     hints = np.asarray(hints, float).reshape(-1, 4)
     if len(hints) < 2:
@@ -70,67 +88,155 @@ def fit_sheet(grey: np.ndarray, hints: Sequence, crs: str, grid_crs: Optional[st
     to_crs = Transformer.from_crs(CRS.from_user_input(grid_crs), CRS.from_user_input(crs), always_xy=True)
     from_crs = Transformer.from_crs(CRS.from_user_input(crs), CRS.from_user_input(grid_crs), always_xy=True)
     geographic = CRS.from_user_input(grid_crs).is_geographic
-    step = step or grid_step(hints[:, 2:], DEGREE_STEPS if geographic else METRE_STEPS)
-    lines = line_map(grey)
+    steps = [step] if step else grid_steps(hints[:, 2:], DEGREE_STEPS if geographic else METRE_STEPS)
+    source = scan if isinstance(scan, LineSource) else LineSource.from_array(scan)
+    shape = source.shape
     hint_xy = np.column_stack(to_crs.transform(hints[:, 2], hints[:, 3]))
     forward, backward = _first_model(hints[:, :2], hint_xy, CRS.from_user_input(crs).is_geographic)
-    nodes = _nodes(forward, grey.shape, from_crs, step)
-    spacing = _spacing(backward, nodes, to_crs, step)
-    ring = _rings(nodes, hints[:, 2:], step)
-    found, order, residual = np.zeros((0, 6)), 1, HINT_PX * spacing
-    for k in range(int(ring.max()) + 1):
-        radius = float(np.clip(2.5 * residual + 2.0, 3.0, 0.3 * spacing)) if k else HINT_PX * spacing
-        found = np.vstack([found, _found(lines, nodes[ring == k], backward, to_crs, step, radius, spacing, found)])
-        if k == 0:  # the hints, where the lines cross near them: the first model again, on where they were found
-            snapped = hints[:, :2].copy()
-            for row in found:
-                snapped[np.argmin(np.abs(hints[:, 2:] - row[4:6]).sum(axis=1))] = row[:2]
-            forward, backward = _first_model(snapped, hint_xy, CRS.from_user_input(crs).is_geographic)
-            residual = SNAPPED_PX
-        if len(found) < MIN_FIT:  # the first model until enough crossings to tell a wrong one
-            continue
-        found = _consistent(found, step)
-        found = _trimmed(found, min(order, _order_by_count(len(found))))
-        order = _order(found)
-        forward, backward = _fit(found[:, :2], found[:, 2:4], order), _fit(found[:, 2:4], found[:, :2], order)
-        residual = _residual(found, backward)
+    monitor.report(0.0, "grid: the scan's lines")
+    works, tried = {}, []
+    for k, step in enumerate(steps):  # the largest step the hints allow whose lines are printed
+        monitor.report(0.1 + 0.5 * k / len(steps), f"grid: a lattice of step {step:g}")
+        found_lattice = _lattice(source, works, forward, backward, from_crs, to_crs, step)
+        if found_lattice is None:
+            break
+        nodes, lattice, ink, spacing, factor = found_lattice
+        tried.append(f"{step:g} ({ink:.2f})")
+        if ink >= MIN_CONTRAST:
+            break
+    else:
+        found_lattice = None
+    if found_lattice is None or ink < MIN_CONTRAST:
+        raise InsufficientMatchesError(
+            "No printed grid was found where the hints put it: the lines of a lattice of step "
+            f"{', '.join(tried) or '-'} hold that many times the ink of the same lines moved by part of a step "
+            f"({MIN_CONTRAST:g} needed). "
+            "Check the hints' coordinates and the grid's step, or register the sheet onto a reference layer.", 0, 6)
+    _check_hints(hints, hint_xy, lattice.coef, spacing)
+    radius = max(3.0, 0.6 * factor, LOCAL_SHARE * spacing)
+    monitor.report(0.6, "grid: each crossing")
+    found = _found(source, nodes, lattice.coef, to_crs, step, radius, spacing, monitor.check)
     if len(found) < 3:
-        raise InsufficientMatchesError(f"Only {len(found)} crossings of the printed grid were found near where the "
-                                       "hints put them: check the hints' coordinates and the grid's step.",
+        raise InsufficientMatchesError(f"Only {len(found)} crossings of the printed grid were found on the lattice "
+                                       "the hints give: check the hints' coordinates and the grid's step.",
                                        len(found), 6)
+    order = _order(found, shape)
     found = _trimmed(found, order)
-    order = _order(found, grey.shape)
+    order = _order(found, shape)
     found = _without_stray_lines(found, order)
-    order = _order(found, grey.shape)
-    loo = _held_out_lines(found, order)[0]
-    spread = _spread(found[:, :2], grey.shape)
+    order = _order(found, shape)
+    loo, held_out, _ = _held_out_lines(found, order)
+    spread = _spread(found[:, :2], shape)
+    backward = fit_poly(found[:, 2:4], found[:, :2], order)
+    apart = float(np.max(np.hypot(*(apply_poly(backward, found[:, 2:4]) - apply_poly(lattice.coef, found[:, 2:4])).T)))
     notes = [f"{len(found)} crossings of the printed grid found (step {step:g}); each grid line predicted from the "
-             f"others: {loo:.2f} px RMS with "
-             f"the {MODELS[order - 1][0]} model; they cover {spread:.0%} of the sheet"]
-    backward = _fit(found[:, 2:4], found[:, :2], order)
-    off = np.hypot(*(_apply(backward, hint_xy) - hints[:, :2]).T)
-    far = [i for i in range(len(hints)) if off[i] > HINT_PX * _spacing(backward, nodes, to_crs, step)]
-    notes += [f"hint {i + 1} ({hints[i, 2]:g}, {hints[i, 3]:g}) is {off[i]:.0f} px from where the grid found puts "
-              "those coordinates: the hints and the printed grid disagree" for i in far]
-    verified = len(found) >= 6 and loo <= tolerance_px and spread >= 0.25 and not far
-    return SheetFit(found, MODELS[order - 1][0], order, loo, verified, step, notes)
+             f"others: {loo:.2f} px RMS with the {MODELS[order - 1][0]} model; they cover {spread:.0%} of the sheet; "
+             f"the lattice of whole lines holds {ink:.2f} times the ink of its lines moved by part of a step, and is "
+             f"within {apart:.1f} px of the crossings' model"]
+    limit = max(2 * tolerance_px, factor)
+    verified = len(found) >= MIN_FIT and loo <= tolerance_px and spread >= MIN_SPREAD and apart <= limit
+    inside = _inside(apply_poly(lattice.coef, np.column_stack(to_crs.transform(*nodes.T))), shape)
+    monitor.report(1.0, "grid: the model")
+    return SheetFit(found, MODELS[order - 1][0], order, loo, verified, step, notes, held_out, spread, int(inside.sum()),
+                    apart, limit, ink)
 
 
-def grid_step(coords: np.ndarray, steps: Sequence[float]) -> float:
-    """The largest of ``steps`` that every coordinate of ``coords`` is a multiple of (to 1 % of the step)."""
+def _inside(px, shape, margin: float = 0.0) -> np.ndarray:
+    h, w = shape
+    return (px[:, 0] >= margin) & (px[:, 1] >= margin) & (px[:, 0] <= w - margin) & (px[:, 1] <= h - margin)
+
+
+MIN_CONTRAST = 1.3  # the lattice's ink over its lines moved by part of a step: below, no grid of that step is there
+MIN_SPREAD = 0.25  # share of the sheet the crossings must cover for a verified result
+LOCAL_SHARE = 0.04  # of a step: how far from the lattice's place a crossing is looked for
+FAINT = 0.3  # of the median crossing's ink: fainter crossings are noise (off the paper, a gap in the lines)
+
+
+def _factor(spacing: float, shape) -> int:
+    """The line map's reduction: a step of at least 24 reduced px, and at most 4000 px on the long side."""
+    return max(1, int(spacing // 24), int(np.ceil(max(shape) / 4000)))
+
+
+def _grid_lines(nodes, step, to_crs, per_step: float):
+    """(output-CRS points along every grid line through ``nodes`` and one step beyond, ``per_step`` a step; each
+    line's axis: 0 where grid x is constant, 1 where grid y is)."""
+    n = max(int(np.ceil(per_step)), 4)
+    lo, hi = nodes.min(axis=0) - step, nodes.max(axis=0) + step
+    out, axes = [], []
+    for axis in (0, 1):
+        along = np.arange(lo[1 - axis], hi[1 - axis] + step / n / 2, step / n)
+        for value in np.unique(nodes[:, axis]):
+            g = np.empty((len(along), 2))
+            g[:, axis], g[:, 1 - axis] = value, along
+            xy = np.column_stack(to_crs.transform(g[:, 0], g[:, 1]))
+            out.append(xy[np.all(np.isfinite(xy), axis=1)])
+            axes.append(axis)
+    return out, axes
+
+
+def _steps(coef, nodes, to_crs, step) -> np.ndarray:
+    """Scan px of one grid step along grid x and along grid y at the middle of ``nodes``."""
+    mid = nodes[len(nodes) // 2]
+    pts = np.column_stack(to_crs.transform([mid[0], mid[0] + step, mid[0]], [mid[1], mid[1], mid[1] + step]))
+    px = apply_poly(coef, pts)
+    return np.array([px[1] - px[0], px[2] - px[0]])
+
+
+def _check_hints(hints, hint_xy, coef, spacing) -> None:
+    """Each hint within :data:`HINT_PX` of a step from where the lattice puts its coordinates, else the hint
+    is named as the one that disagrees."""
+    off = np.hypot(*(apply_poly(coef, hint_xy) - hints[:, :2]).T)
+    for i in np.flatnonzero(off > HINT_PX * spacing):
+        raise InputError(f"The printed grid found from the hints does not pass through hint {i + 1} ({hints[i, 2]:g}, "
+                         f"{hints[i, 3]:g}): it puts those coordinates {off[i]:.0f} px away. Check that hint's "
+                         "coordinates and place; if they are right, the grid is too faint here to be followed: "
+                         "register the sheet onto a reference layer.")
+
+
+def grid_steps(coords: np.ndarray, steps: Sequence[float]) -> List[float]:
+    """Those of ``steps`` that every coordinate of ``coords`` is a multiple of (to 1 % of the step), largest
+    first: hints a few steps apart fit twice the printed step as well as the step itself."""
+    fits = []
     for s in steps:
         ratio = np.asarray(coords, float) / s
         if np.all(np.abs(ratio - np.round(ratio)) <= 0.01):
-            return float(s)
-    raise InputError("The hints' coordinates are not on a grid of a usual step (degrees: 10 to 1'; metres: 100 km "
-                     "to 100 m): give the grid's step.")
+            fits.append(float(s))
+    if not fits:
+        raise InputError("The hints' coordinates are not on a grid of a usual step (degrees: 10 to 1'; metres: 100 "
+                         "km to 100 m): give the grid's step.")
+    return fits
+
+
+def _lattice(source, works, forward, backward, from_crs, to_crs, step):
+    """(nodes, lattice, its contrast, the step in scan px, the line map's reduction) of a grid of ``step`` from
+    the hints' first model, or None where its crossings would be too close or too many to be a printed grid.
+    ``works``: the reduced line maps computed so far, by reduction."""
+    try:
+        nodes = _nodes(forward, source.shape, from_crs, step)
+    except InputError:
+        return None
+    spacing = _spacing(backward, nodes, to_crs, step)
+    if spacing < MIN_STEP_PX:
+        return None
+    factor = _factor(spacing, source.shape)
+    if factor not in works:
+        works[factor] = source.reduced(factor)
+    work = works[factor]
+    lines, axes = _grid_lines(nodes, step, to_crs, spacing / factor)
+    lattice = fit_lattice(work, factor, lines, backward, spacing)
+    steps = _steps(lattice.coef, nodes, to_crs, step)
+    ink = contrast(work, factor, lines, axes, lattice, steps)
+    return nodes, lattice, ink, float(min(np.hypot(*steps.T))), factor
+
+
+MIN_STEP_PX = 12.0  # a printed grid's crossings are at least this far apart on a scan
 
 
 def _nodes(forward, shape, from_crs, step):
     """Grid coordinates (n, 2) of the crossings the model ``forward`` (scan px -> crs) puts on the sheet."""
     h, w = shape
     edge = np.array([[x, y] for x in np.linspace(0, w, 9) for y in np.linspace(0, h, 9)])
-    gx, gy = from_crs.transform(*_apply(forward, edge).T)
+    gx, gy = from_crs.transform(*apply_poly(forward, edge).T)
     i0, i1 = math.floor(np.nanmin(gx) / step), math.ceil(np.nanmax(gx) / step)
     j0, j1 = math.floor(np.nanmin(gy) / step), math.ceil(np.nanmax(gy) / step)
     if (i1 - i0 + 1) * (j1 - j0 + 1) > MAX_CROSSINGS:
@@ -141,104 +247,48 @@ def _nodes(forward, shape, from_crs, step):
 
 
 def _first_model(px, xy, geographic: bool):
-    """(scan px -> crs, crs -> scan px) from the hints: a similarity from two (on longitudes shrunk by the
-    cosine of the latitude where the crs is geographic, so that a degree is as long both ways), an affine
-    from more."""
-    if len(px) > 2:
-        return _fit(px, xy, 1), _fit(xy, px, 1)
+    """(scan px -> crs, crs -> scan px) from the hints: a similarity with a reflection (scan rows run down,
+    northings up), on longitudes shrunk by the cosine of the latitude where the crs is geographic, so that a
+    degree is as long both ways. Hints along one line fix a similarity but not an affine; the lattice frees
+    it (:func:`hamta.core.grid.lattice.fit_lattice`)."""
     shrink = math.cos(math.radians(float(np.mean(xy[:, 1])))) if geographic else 1.0
     squeeze = np.diag([shrink, 1.0])
-    forward, backward = _fit(px, xy @ squeeze, 1, True), _fit(xy @ squeeze, px, 1, True)
+    forward, backward = fit_poly(px, xy @ squeeze, 1, True), fit_poly(xy @ squeeze, px, 1, True)
     forward["m"] = forward["m"] / np.array([shrink, 1.0])
     backward["squeeze"] = shrink
     return forward, backward
-
-
-def _rings(nodes, hint_grid, step) -> np.ndarray:
-    """Each node's ring around the nearest hint: the grid steps to it, the larger of the two axes."""
-    d = np.abs(nodes[:, None, :] - hint_grid[None, :, :]) / step
-    return np.round(d.max(axis=2).min(axis=1)).astype(int)
-
-
-def _order_by_count(n: int) -> int:
-    """The highest order that ``n`` crossings can fit with some to spare."""
-    return max(order for _, order, least, _ in MODELS if n > least or order == 1)
-
-
-def _residual(found, backward) -> float:
-    """The typical distance (scan px, a median: robust to a crossing taken on a wrong line) of the crossings
-    found from the model fitted on them."""
-    return float(1.4826 * np.median(np.hypot(*(_apply(backward, found[:, 2:4]) - found[:, :2]).T)))
 
 
 def _spacing(backward, nodes, to_crs, step) -> float:
     """The grid's step in scan px near the middle of ``nodes``."""
     mid = nodes[len(nodes) // 2]
     pts = np.column_stack(to_crs.transform([mid[0], mid[0] + step, mid[0]], [mid[1], mid[1], mid[1] + step]))
-    px = _apply(backward, pts)
+    px = apply_poly(backward, pts)
     return float(min(np.hypot(*(px[1] - px[0])), np.hypot(*(px[2] - px[0]))))
 
 
-def _found(lines, nodes, backward, to_crs, step, radius, spacing, known=None) -> np.ndarray:
-    """Rows (scan x, y, crs x, y, grid x, y) of each crossing found near where it is predicted: from the
-    crossings already ``known`` within two steps (a local affine: a curved graticule bends little there), else
-    from ``backward`` (crs -> scan px); the two lines' directions there taken from the same model."""
+def _found(source, nodes, coef, to_crs, step, radius, spacing, check=lambda: None) -> np.ndarray:
+    """Rows (scan x, y, crs x, y, grid x, y) of each crossing found within ``radius`` px of where the lattice
+    ``coef`` (crs -> scan px) puts it, the two lines' directions there taken from the same model, whose lines
+    hold at least :data:`FAINT` of the median crossing's ink (off the paper, noise peaks). ``check`` raises
+    where the user cancelled."""
     eps = step * 0.02
     rows = []
-    for gx, gy in nodes:
+    for k, (gx, gy) in enumerate(nodes):
+        if k % 64 == 0:
+            check()
         pts = np.column_stack(to_crs.transform([gx, gx, gx + eps], [gy, gy + eps, gy]))
         if not np.all(np.isfinite(pts)):
             continue
-        px = _local(known, gx, gy, step, pts)
-        local = px is not None
-        if not local:
-            px = _apply(backward, pts)
+        px = apply_poly(coef, pts)
         dirs = [(px[1] - px[0]) / (np.hypot(*(px[1] - px[0])) + 1e-12),  # the line of constant grid x
                 (px[2] - px[0]) / (np.hypot(*(px[2] - px[0])) + 1e-12)]  # and of constant grid y
-        got = crossing(lines, px[0], dirs, min(radius, LOCAL_RADIUS_PX) if local else radius, along=0.45 * spacing)
+        got = crossing(source, px[0], dirs, radius, along=0.45 * spacing)
         if got is not None:
-            rows.append([*got.xy, *pts[0], gx, gy])
-    return np.array(rows).reshape(-1, 6)
-
-
-LOCAL_RADIUS_PX = 4.0  # search radius where neighbours predict a crossing
-
-
-def _consistent(found, step) -> np.ndarray:
-    """``found`` without the crossings that the local affine of their neighbours (within two steps, the
-    crossing itself left out) puts more than :data:`LOCAL_AGREE` of a step away: a map line taken for a
-    grid line; crossings without enough neighbours are kept."""
-    keep = np.ones(len(found), bool)
-    spacing = _typical_step_px(found, step)
-    for i, row in enumerate(found):
-        others = np.delete(found, i, axis=0)
-        px = _local(others, row[4], row[5], step, row[None, 2:4])
-        if px is not None and np.hypot(*(px[0] - row[:2])) > LOCAL_AGREE * spacing:
-            keep[i] = False
-    return found[keep]
-
-
-def _typical_step_px(found, step) -> float:
-    """The median distance in scan px between crossings one step apart."""
-    d = []
-    for row in found:
-        near = found[(np.abs(found[:, 4] - row[4]) + np.abs(found[:, 5] - row[5]) - step) ** 2 < (0.01 * step) ** 2]
-        d += list(np.hypot(*(near[:, :2] - row[:2]).T))
-    return float(np.median(d)) if d else math.inf
-
-
-LOCAL_AGREE = 0.04  # of a step: how far a crossing may lie from where its neighbours put it (2 px at 50 px)
-
-
-def _local(known, gx, gy, step, pts):
-    """``pts`` (crs) in scan px through an affine fitted on the ``known`` crossings within two steps of
-    (gx, gy), where at least four of them span both directions; else None."""
-    if known is None or len(known) < 4:
-        return None
-    near = known[(np.abs(known[:, 4] - gx) <= 2.01 * step) & (np.abs(known[:, 5] - gy) <= 2.01 * step)]
-    if len(near) < 4 or np.ptp(near[:, 4]) < step * 0.5 or np.ptp(near[:, 5]) < step * 0.5:
-        return None
-    return _apply(_fit(near[:, 2:4], near[:, :2], 1), pts)
+            rows.append([*got.xy, *pts[0], gx, gy, got.ink])
+    rows = np.array(rows).reshape(-1, 7)
+    inked = rows[:, 6] >= FAINT * np.median(rows[:, 6]) if len(rows) else np.zeros(0, bool)
+    return rows[inked, :6]
 
 
 def _order(found, shape=None) -> int:
@@ -264,33 +314,34 @@ def _loo(found, order) -> float:
     errors = []
     for i in range(n):
         keep = np.arange(n) != i
-        coef = _fit(found[keep, 2:4], found[keep, :2], order)
-        errors.append(np.hypot(*(_apply(coef, found[i:i + 1, 2:4])[0] - found[i, :2])))
+        coef = fit_poly(found[keep, 2:4], found[keep, :2], order)
+        errors.append(np.hypot(*(apply_poly(coef, found[i:i + 1, 2:4])[0] - found[i, :2])))
     return float(np.sqrt(np.mean(np.square(errors))))
 
 
 def _held_out_lines(found, order):
-    """(RMS in scan px, {line: RMS}) of each crossing predicted by the model fitted without its grid line:
-    each line of constant grid x and of constant grid y left out in turn. A line taken on the sheet's frame
+    """(RMS in scan px, (n, 2) error of each crossing, {(axis, value): RMS of that line}) of each crossing
+    predicted by the model fitted without its grid line: each line of constant grid x left out in turn, and
+    each of constant grid y (a crossing's error is the larger of its two). A line taken on the sheet's frame
     or a border, shifted as a whole, fits with the others crossing by crossing but not as a line."""
-    errors, per_line = [], {}
+    errors, per_line = np.zeros((len(found), 2)), {}
     for axis in (4, 5):
         for value in np.unique(found[:, axis]):
             on = found[:, axis] == value
             if (~on).sum() <= MODELS[order - 1][2]:
-                return math.inf, {}
-            coef = _fit(found[~on, 2:4], found[~on, :2], order)
-            e = np.hypot(*(_apply(coef, found[on, 2:4]) - found[on, :2]).T)
-            errors += list(e)
-            per_line[(axis, value)] = float(np.sqrt(np.mean(e ** 2)))
-    return float(np.sqrt(np.mean(np.square(errors)))), per_line
+                return math.inf, np.full((len(found), 2), np.inf), {}
+            e = apply_poly(fit_poly(found[~on, 2:4], found[~on, :2], order), found[on, 2:4]) - found[on, :2]
+            per_line[(axis, value)] = float(np.sqrt(np.mean(np.sum(e ** 2, axis=1))))
+            worse = np.hypot(*e.T) > np.hypot(*errors[on].T)
+            errors[np.flatnonzero(on)[worse]] = e[worse]
+    return float(np.sqrt(np.mean(np.sum(errors ** 2, axis=1)))), errors, per_line
 
 
 def _without_stray_lines(found, order) -> np.ndarray:
     """``found`` without the grid lines that the others predict worst, one at a time, while one is beyond
     1.5 px and 3 times the median line."""
     while len(found) > 2 * MODELS[order - 1][2]:
-        _, per_line = _held_out_lines(found, order)
+        per_line = _held_out_lines(found, order)[2]
         if not per_line:
             break
         (axis, value), worst = max(per_line.items(), key=lambda kv: kv[1])
@@ -301,12 +352,15 @@ def _without_stray_lines(found, order) -> np.ndarray:
 
 
 def _trimmed(found, order) -> np.ndarray:
-    """``found`` without crossings whose residual is beyond 3 times the median (and 1.5 px): a line of the
-    map's content taken for a grid line."""
-    coef = _fit(found[:, 2:4], found[:, :2], order)
-    res = np.hypot(*(_apply(coef, found[:, 2:4]) - found[:, :2]).T)
-    keep = res <= max(1.5, 3.0 * float(np.median(res)))
-    return found[keep] if keep.sum() >= 3 else found
+    """``found`` without crossings whose residual is beyond 3 times the median (and 1.5 px), refitted until
+    none is: a line of the map's content taken for a grid line."""
+    while True:
+        coef = fit_poly(found[:, 2:4], found[:, :2], order)
+        res = np.hypot(*(apply_poly(coef, found[:, 2:4]) - found[:, :2]).T)
+        keep = res <= max(1.5, 3.0 * float(np.median(res)))
+        if keep.all() or keep.sum() < max(3, MODELS[order - 1][2] + 1):
+            return found
+        found = found[keep]
 
 
 def _spread(px, shape) -> float:
@@ -317,32 +371,3 @@ def _spread(px, shape) -> float:
         return 0.0
     hull = cv2.convexHull(px.astype(np.float32))
     return float(cv2.contourArea(hull)) / (shape[0] * shape[1])
-
-
-def _terms(xy: np.ndarray, order: int) -> np.ndarray:
-    x, y = xy[:, 0], xy[:, 1]
-    return np.column_stack([x ** (i - j) * y ** j for i in range(order + 1) for j in range(i + 1)])
-
-
-def _fit(src, dst, order, similarity=False) -> dict:
-    """Polynomial ``src`` -> ``dst`` of ``order`` (on normalised coordinates); a similarity (two points)."""
-    src, dst = np.asarray(src, float), np.asarray(dst, float)
-    centre = src.mean(axis=0)
-    scale = max(float(np.abs(src - centre).max()), 1e-9)
-    u = (src - centre) / scale
-    if similarity:  # with a reflection: scan rows run down, map northings up
-        a = np.column_stack([u[:, 0], u[:, 1], np.ones(len(u)), np.zeros(len(u))])
-        b = np.column_stack([-u[:, 1], u[:, 0], np.zeros(len(u)), np.ones(len(u))])
-        p, q, tx, ty = np.linalg.lstsq(np.vstack([a, b]), np.concatenate([dst[:, 0], dst[:, 1]]), rcond=None)[0]
-        m = np.array([[tx, ty], [p, q], [q, -p]])
-    else:
-        m = np.linalg.lstsq(_terms(u, order), dst, rcond=None)[0]
-    return {"centre": centre, "scale": scale, "m": m, "order": order}
-
-
-def _apply(coef: dict, xy) -> np.ndarray:
-    xy = np.asarray(xy, float)
-    if "squeeze" in coef:  # a model fitted on longitudes shrunk by this factor (see _first_model)
-        xy = xy * np.array([coef["squeeze"], 1.0])
-    u = (xy - coef["centre"]) / coef["scale"]
-    return _terms(u, coef["order"]) @ coef["m"]

@@ -253,10 +253,11 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
         if info.is_complex and decimating:
             data = _read_amplitude_by_strips(ds, bands, window, shape, not inside)
         else:
-            resampling = Resampling.average if decimating else Resampling.nearest
+            palette = _palette_grey(info, bands, ds)
+            resampling = Resampling.average if decimating and palette is None else Resampling.nearest
             data = ds.read(bands, window=window, out_shape=full_shape, resampling=resampling,
                            boundless=not inside, fill_value=0)
-            data = np.abs(data) if info.is_complex else data
+            data = np.abs(data) if info.is_complex else data if palette is None else palette[data]
         # GDAL would compute an all-valid mask block by block and keep those blocks in its cache
         # (120 MB for a 10980 px band read once); inside the raster such a mask is all true anyway.
         flags = ds.mask_flag_enums if inside else ()
@@ -272,6 +273,21 @@ def read_image(info: RasterInfo, bands: Tuple[int, ...], window: Optional[Window
     image = np.tensordot(LUMINANCE, data, axes=1) if len(bands) == 3 else data[0]
     image = np.where(valid, image, 0).astype(np.float32, copy=False)
     return image, valid
+
+
+def _palette_grey(info: RasterInfo, bands, ds) -> Optional[np.ndarray]:
+    """The luminance of each entry of a palette band's colour table (a chart or a scanned map in 256
+    colours: its indexes are not brightness), or None for a band without one."""
+    if len(bands) != 1 or info.colorinterp[bands[0] - 1] != ColorInterp.palette.name or info.dtype not in ("uint8",
+                                                                                                           "uint16"):
+        return None
+    try:
+        table = ds.colormap(bands[0])
+    except ValueError:
+        return None
+    size = 256 if info.dtype == "uint8" else 65536
+    rgb = np.array([table.get(i, (0, 0, 0, 0))[:3] for i in range(size)], np.float32)
+    return rgb @ LUMINANCE
 
 
 _QUIET = threading.Lock()

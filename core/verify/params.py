@@ -143,6 +143,7 @@ class Verification:
     look: str = "grid"
     turned_agree: int = 0
     turned_chance: float = 1.0
+    check: str = "cfog-sites"  # the check's name in report.json: 'grid-held-out-lines' for a sheet's own grid
 
     @property
     def verified(self) -> bool:
@@ -153,7 +154,7 @@ class Verification:
         def num(v):
             return None if v is None or not np.isfinite(v) else float(v)
 
-        return {"verdict": self.verdict, "reasons": list(self.reasons), "check": "cfog-sites",
+        return {"verdict": self.verdict, "reasons": list(self.reasons), "check": self.check,
                 "tolerance_px": self.tolerance_px, "template_px": self.template_px, "n_sites": self.n_sites,
                 "n_agree": self.n_agree, "n_contradict": self.n_contradict, "n_clear": self.n_clear,
                 "chance_rate": self.chance_rate, "chance_probability": self.chance, "coverage": self.coverage,

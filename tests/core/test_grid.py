@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from hamta.core.errors import InputError
-from hamta.core.grid.lines import crossing, line_map
-from hamta.core.grid.sheet import fit_sheet, grid_step
+from hamta.core.grid.lines import crossing
+from hamta.core.grid.scan import LineSource
+from hamta.core.grid.sheet import fit_sheet, grid_steps
 
 STEP_M = 1000.0
 
@@ -52,7 +53,8 @@ def test_a_crossing_is_found_to_a_fraction_of_a_pixel_from_a_point_near_it():
     px = to_px(node)[0]
     d1 = to_px(node + [0, 10])[0] - px
     d2 = to_px(node + [10, 0])[0] - px
-    got = crossing(line_map(grey), px + [2.5, -2.0], [d1 / np.hypot(*d1), d2 / np.hypot(*d2)], 6.0, along=30)
+    directions = [d1 / np.hypot(*d1), d2 / np.hypot(*d2)]
+    got = crossing(LineSource.from_array(grey), px + [2.5, -2.0], directions, 6.0, along=30)
     assert got is not None and np.hypot(*(np.array(got.xy) - px)) < 0.3, (got, px)
 
 
@@ -68,8 +70,9 @@ def test_hints_placed_roughly_find_every_crossing_of_the_sheet(hints):
     assert fit.verified and fit.step == STEP_M and fit.loo_px < 0.5, fit.notes
 
 
-def test_the_grid_step_is_the_largest_usual_step_the_hints_fit_and_a_stray_one_is_refused():
-    assert grid_step(np.array([[150.0, -30.0], [152.0, -33.0]]), (10, 5, 2, 1, 0.5)) == 1
-    assert grid_step(np.array([[501000.0, 6000000.0], [503000.0, 6004000.0]]), (10000, 5000, 2000, 1000)) == 1000
+def test_the_grid_steps_are_the_usual_steps_the_hints_fit_largest_first_and_a_stray_one_is_refused():
+    assert grid_steps(np.array([[150.0, -30.0], [152.0, -33.0]]), (10, 5, 2, 1, 0.5)) == [1, 0.5]
+    assert grid_steps(np.array([[502000.0, 6000000.0], [504000.0, 6004000.0]]), (10000, 5000, 2000, 1000)) == [2000,
+                                                                                                             1000]
     with pytest.raises(InputError, match="usual step"):
-        grid_step(np.array([[501234.5, 6000000.0]]), (10000, 5000, 2000, 1000, 500, 200, 100))
+        grid_steps(np.array([[501234.5, 6000000.0]]), (10000, 5000, 2000, 1000, 500, 200, 100))

@@ -1,0 +1,238 @@
+"""Synthetic scanned sheets with a printed grid and an exact truth (issue 56's synthetic family).
+
+A sheet is drawn north-up in its CRS (:class:`SheetSpec`: the CRS, what the printed coordinates count in and
+their step, the area, the print's pixel size) over map content (a real image faded to a map's tints, with
+roads and rivers drawn across it), with its grid as full lines or as crosses at each crossing. It is then
+"printed and scanned": turned, warped smoothly (paper), yellowed, folded, a corner missing, noise and JPEG.
+The truth is exact: :meth:`Sheet.to_scan` maps printed coordinates to scan px (corner convention) through
+the same turn and warp. Written as a plain image (no georeferencing).
+"""
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class SheetSpec:
+    """``crs``: the sheet's; ``grid_crs`` and ``step``: what the printed coordinates count in; ``centre``
+    (grid_crs units) and ``size_px`` (width, height) at ``pixel_m`` (crs units per print px) place it. ``style``
+    'lines' or 'crosses'; ``ink`` the grid's grey (0 black, 235 the paper); ``width_px`` its width. Scan:
+    ``angle_deg``, ``warp_px`` (the paper's smooth distortion, at most), ``yellow``, ``fold``, ``corner`` (a
+    missing corner), ``jpeg`` quality, ``noise`` (grey levels), ``grid`` False for a sheet without one."""
+
+    name: str
+    crs: str
+    grid_crs: str
+    step: float
+    centre: tuple
+    size_px: tuple = (1100, 800)
+    pixel_m: float = 5.0
+    style: str = "lines"
+    ink: int = 70
+    width_px: float = 1.5
+    angle_deg: float = 0.0
+    warp_px: float = 0.0
+    yellow: bool = False
+    fold: bool = False
+    corner: bool = False
+    jpeg: int = 85
+    noise: float = 4.0
+    grid: bool = True
+    seed: int = 0
+    content: dict = field(default_factory=dict)
+
+
+SPECS = (
+    SheetSpec("utm-km-lines", "EPSG:32633", "EPSG:32633", 1000.0, (500000.0, 5540000.0), angle_deg=1.5,
+              warp_px=2.0, yellow=True),
+    SheetSpec("utm-km-crosses", "EPSG:32633", "EPSG:32633", 1000.0, (455000.0, 5510000.0), style="crosses",
+              width_px=2.0, ink=40, angle_deg=-3.0, jpeg=70, seed=1),
+    SheetSpec("graticule-on-utm", "EPSG:32633", "EPSG:4326", 1 / 60, (15.1, 50.2), angle_deg=12.0, warp_px=3.0,
+              fold=True, seed=2),
+    SheetSpec("graticule-lambert-conic", "EPSG:2154", "EPSG:4326", 10 / 60, (2.5, 46.5), size_px=(1300, 950),
+              pixel_m=100.0, ink=110, width_px=1.0, angle_deg=0.7, corner=True, yellow=True, seed=3),
+    SheetSpec("mercator-chart", "EPSG:3395", "EPSG:4326", 5 / 60, (-70.5, 42.2), pixel_m=50.0, angle_deg=45.0,
+              ink=90, jpeg=60, seed=4),
+    SheetSpec("turned-sheet-faint", "EPSG:32618", "EPSG:32618", 1000.0, (500000.0, 4400000.0), ink=165,
+              width_px=1.0, angle_deg=91.0, warp_px=1.5, yellow=True, noise=6.0, seed=5),
+    SheetSpec("no-grid", "EPSG:32633", "EPSG:32633", 1000.0, (500000.0, 5540000.0), grid=False, seed=6),
+)
+
+
+@dataclass
+class Sheet:
+    """A rendered sheet: ``path`` (the scan), its spec, and the truth (:meth:`to_scan`)."""
+
+    path: str
+    spec: SheetSpec
+    _to_canvas: object
+    _canvas_to_scan: object
+
+    def to_scan(self, grid_xy) -> np.ndarray:
+        """Printed coordinates (n, 2, ``grid_crs``) -> scan px (corner convention)."""
+        return self._canvas_to_scan(self._to_canvas(np.atleast_2d(np.asarray(grid_xy, float))))
+
+    def nodes(self) -> np.ndarray:
+        """Printed coordinates of every crossing on the scan (a step from its edges)."""
+        g = np.asarray(self.spec.centre, float)
+        r = np.arange(-40, 41) * self.spec.step
+        gx, gy = np.meshgrid(np.round(g[0] / self.spec.step) * self.spec.step + r,
+                             np.round(g[1] / self.spec.step) * self.spec.step + r)
+        grid = np.column_stack([gx.ravel(), gy.ravel()])
+        px = self.to_scan(grid)
+        h, w = self.shape
+        inside = (px[:, 0] > 20) & (px[:, 1] > 20) & (px[:, 0] < w - 20) & (px[:, 1] < h - 20)
+        return grid[inside]
+
+    @property
+    def shape(self):
+        import cv2
+
+        return cv2.imread(self.path, cv2.IMREAD_GRAYSCALE).shape
+
+    def hints(self, k: int, seed: int, noise_px: float = 3.0) -> np.ndarray:
+        """``k`` crossings away from the edges, placed within ``noise_px``: rows of scan x, y, grid x, y."""
+        rng = np.random.default_rng(seed)
+        nodes = self.nodes()
+        px = self.to_scan(nodes)
+        h, w = self.shape
+        inner = nodes[(px[:, 0] > 0.1 * w) & (px[:, 0] < 0.9 * w) & (px[:, 1] > 0.1 * h) & (px[:, 1] < 0.9 * h)]
+        pick = inner[rng.choice(len(inner), k, replace=False)]
+        return np.column_stack([self.to_scan(pick) + rng.uniform(-noise_px, noise_px, (k, 2)), pick])
+
+
+def render(spec: SheetSpec, folder: str, background=None) -> Sheet:
+    """Draw, print and scan ``spec`` into ``folder`` (a JPEG); ``background``: a grey image (any size) for the
+    map's content (a generated texture without one)."""
+    import cv2
+    from pyproj import Transformer
+
+    rng = np.random.default_rng(spec.seed)
+    w, h = spec.size_px
+    to_crs = Transformer.from_crs(spec.grid_crs, spec.crs, always_xy=True)
+    cx, cy = to_crs.transform(*spec.centre)
+    x0, y1 = cx - w / 2 * spec.pixel_m, cy + h / 2 * spec.pixel_m
+
+    def to_canvas(grid_xy):
+        mx, my = to_crs.transform(grid_xy[:, 0], grid_xy[:, 1])
+        return np.column_stack([(np.asarray(mx) - x0) / spec.pixel_m, (y1 - np.asarray(my)) / spec.pixel_m])
+
+    canvas = _content(background, (h, w), rng)
+    if spec.grid:
+        _draw_grid(canvas, spec, to_canvas)
+    scan, canvas_to_scan = _scan(canvas, spec, rng)
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, f"{spec.name}.jpg")
+    cv2.imwrite(path, scan, [cv2.IMWRITE_JPEG_QUALITY, spec.jpeg])
+    return Sheet(path, spec, to_canvas, canvas_to_scan)
+
+
+def _content(background, shape, rng) -> np.ndarray:
+    """Map content (BGR uint8): an image faded to tints, roads and rivers, text-like marks."""
+    import cv2
+
+    h, w = shape
+    if background is None:
+        base = cv2.GaussianBlur(rng.normal(0, 1, (h // 8 + 1, w // 8 + 1)).astype(np.float32), (0, 0), 2)
+        base = cv2.resize(base, (w, h), interpolation=cv2.INTER_CUBIC)
+        base = 128 + 60 * base / (np.abs(base).max() + 1e-6)
+    else:
+        base = cv2.resize(np.asarray(background, np.float32), (w, h), interpolation=cv2.INTER_AREA)
+    tint = np.array([0.80, 0.92, 0.97])  # greenish-cream map fills
+    canvas = (235 - 0.35 * (235 - base[..., None])) * tint[None, None] + 20
+    canvas = np.clip(canvas, 0, 255).astype(np.uint8)
+    for i in range(14):  # roads (dark red, brown) and rivers (blue): winding strokes
+        turns = np.cumsum(rng.normal(0, 0.35, 40))
+        start, heading = rng.uniform([0, 0], [w, h]), rng.uniform(0, 2 * math.pi)
+        path = start + np.cumsum(np.column_stack([np.cos(heading + turns), np.sin(heading + turns)]) * 25, axis=0)
+        colour = (200, 120, 40) if i % 3 == 0 else (40, 60, int(rng.integers(120, 190)))
+        cv2.polylines(canvas, [path.astype(np.int32)], False, colour, int(rng.integers(1, 3)), cv2.LINE_AA)
+    for _ in range(120):  # names and symbols
+        x, y = int(rng.integers(0, w)), int(rng.integers(0, h))
+        cv2.putText(canvas, "abcdefgh"[int(rng.integers(0, 8)):][:int(rng.integers(2, 7))], (x, y),
+                    cv2.FONT_HERSHEY_SIMPLEX, 0.35, (40, 40, 40), 1, cv2.LINE_AA)
+    return canvas
+
+
+def _draw_grid(canvas, spec: SheetSpec, to_canvas) -> None:
+    import cv2
+
+    h, w = canvas.shape[:2]
+    g = np.asarray(spec.centre, float)
+    span = np.arange(-60, 61)
+    base = np.round(g / spec.step) * spec.step
+    colour = (spec.ink,) * 3
+    thick = max(int(round(spec.width_px * 4)), 1)
+    big = np.zeros((h * 4, w * 4), np.uint8)  # drawn 4x finer, then reduced: sub-pixel places and widths
+    for axis in (0, 1):
+        for k in span:
+            value = base[axis] + k * spec.step
+            t = base[1 - axis] + np.linspace(-60, 60, 2400) * spec.step
+            pts = np.empty((len(t), 2))
+            pts[:, axis], pts[:, 1 - axis] = value, t
+            px = to_canvas(pts)
+            ok = np.all(np.isfinite(px), axis=1) & (np.abs(px) < 4 * max(w, h)).all(axis=1)
+            if spec.style == "lines" and ok.sum() > 1:
+                cv2.polylines(big, [_fine(px[ok])], False, 255, thick, cv2.LINE_AA, shift=2)
+    if spec.style == "crosses":
+        arm = 0.08 * spec.step
+        nodes = np.array([[base[0] + i * spec.step, base[1] + j * spec.step] for i in span[::1] for j in span[::1]])
+        centre = to_canvas(nodes)
+        keep = (centre[:, 0] > -50) & (centre[:, 1] > -50) & (centre[:, 0] < w + 50) & (centre[:, 1] < h + 50)
+        for node, c in zip(nodes[keep], centre[keep]):
+            for d in ((arm, 0), (0, arm)):
+                ends = to_canvas(np.array([node - d, node + d]))
+                cv2.line(big, tuple(_fine(ends)[0]), tuple(_fine(ends)[1]), 255, thick, cv2.LINE_AA, shift=2)
+    alpha = cv2.resize(big, (w, h), interpolation=cv2.INTER_AREA).astype(np.float32)[..., None] / 255.0
+    canvas[:] = np.clip(canvas * (1 - alpha) + np.array(colour, np.float32) * alpha, 0, 255).astype(np.uint8)
+
+
+def _fine(px) -> np.ndarray:
+    """Canvas px (corner convention) as points of the 4 times finer drawing, in quarters (``shift=2``)."""
+    return np.round((np.asarray(px) * 4 - 0.5) * 4).astype(np.int32)
+
+
+def _scan(canvas, spec: SheetSpec, rng):
+    """(the scanned image, canvas px -> scan px): turned about the centre, warped, with the paper's artefacts."""
+    import cv2
+
+    h, w = canvas.shape[:2]
+    a = math.radians(spec.angle_deg)
+    rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+    corners = (np.array([[0, 0], [w, 0], [w, h], [0, h]]) - [w / 2, h / 2]) @ rot.T
+    sw, sh = (np.ptp(corners, axis=0) + 40).astype(int)
+    shift = np.array([sw / 2, sh / 2])
+    phase = rng.uniform(0, 2 * math.pi, 4)
+
+    def warp(xy):  # a smooth displacement of the paper, scan px
+        u, v = xy[:, 0] / sw, xy[:, 1] / sh
+        return spec.warp_px * np.column_stack([np.sin(2.1 * u + 1.3 * v + phase[0]) * np.cos(1.7 * v + phase[1]),
+                                               np.sin(1.9 * v + 0.8 * u + phase[2]) * np.cos(1.4 * u + phase[3])])
+
+    def scan_to_canvas(xy):
+        return ((xy - warp(xy)) - shift) @ rot + [w / 2, h / 2]
+
+    def canvas_to_scan(xy):
+        s = (xy - [w / 2, h / 2]) @ rot.T + shift
+        for _ in range(20):
+            s = (xy - [w / 2, h / 2]) @ rot.T + shift + warp(s)
+        return s
+
+    yy, xx = np.mgrid[0:sh, 0:sw].astype(np.float64) + 0.5
+    src = scan_to_canvas(np.column_stack([xx.ravel(), yy.ravel()])) - 0.5
+    mx, my = src[:, 0].reshape(sh, sw).astype(np.float32), src[:, 1].reshape(sh, sw).astype(np.float32)
+    scan = cv2.remap(canvas, mx, my, cv2.INTER_LINEAR, borderMode=cv2.BORDER_CONSTANT, borderValue=(250, 250, 250))
+    scan = scan.astype(np.float32)
+    if spec.yellow:
+        scan *= np.array([0.78, 0.93, 1.0]) * (0.92 + 0.08 * (xx / sw))[..., None]
+    if spec.fold:
+        d = np.abs((xx - sw * 0.55) * 0.9 + (yy - sh * 0.5) * 0.1)
+        scan -= 35 * np.exp(-0.5 * (d / 2.0) ** 2)[..., None]
+    if spec.corner:
+        scan[(xx + yy) < 0.22 * (sw + sh) / 2] = 20
+    scan += rng.normal(0, spec.noise, scan.shape)
+    return np.clip(scan, 0, 255).astype(np.uint8), canvas_to_scan

@@ -1,0 +1,94 @@
+"""The Processing algorithm that georeferences a scanned sheet by its own printed grid (a thin adapter over
+:func:`hamta.core.runner.run` with the method 'grid', see :mod:`hamta.core.grid`)."""
+from __future__ import annotations
+
+import dataclasses
+
+from qgis.core import (
+    QgsProcessingException,
+    QgsProcessingParameterBoolean,
+    QgsProcessingParameterCrs,
+    QgsProcessingParameterFile,
+    QgsProcessingParameterNumber,
+    QgsProcessingParameterRasterLayer,
+)
+
+from ..core import RegisterOptions
+from ..core.grid.register import GridParams
+from ..core.options import OutputOptions, option_fields, processing_key
+from .catalogue import GRID_ALGORITHM
+from .options import advanced, option_parameters
+from .register_algorithm import RegisterAlgorithm
+
+SHEET_OPTIONS = ("model", "tolerance_px", "target_band", "resampling", "grid", "resolution", "format",
+                 "creation_options", "fill")  # the options that mean something for a sheet without a reference
+
+
+class GridAlgorithm(RegisterAlgorithm):
+    """'Georeference a scanned map by its grid': the target, its CRS and the hints (a ``.points`` file); the
+    outputs of any registration."""
+
+    SHEET_CRS, HINTS, STEP, GRID_CRS = "SHEET_CRS", "HINTS", "STEP", "GRID_CRS"
+
+    def __init__(self):
+        super().__init__("grid")
+
+    def createInstance(self):
+        return GridAlgorithm()
+
+    def method(self):
+        return None
+
+    def name(self):
+        return GRID_ALGORITHM.id
+
+    def displayName(self):
+        return self.tr(GRID_ALGORITHM.title)
+
+    def shortHelpString(self):
+        return self.tr(GRID_ALGORITHM.help)
+
+    def tags(self):
+        return self.tr("georeference,scanned map,grid,graticule,sheet,GCP,crossings").split(",")
+
+    def initAlgorithm(self, config=None):
+        self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Scanned map (to georeference)")))
+        self.addParameter(QgsProcessingParameterCrs(self.SHEET_CRS, self.tr("CRS of the sheet (its projection)")))
+        self.addParameter(QgsProcessingParameterFile(
+            self.HINTS, self.tr("Crossings placed with their printed coordinates (.points of the Georeferencer)"),
+            extension="points"))
+        self.addParameter(QgsProcessingParameterBoolean(self.KEEP_UNVERIFIED, self.tr("Keep unverified results"),
+                                                        False))
+        kept = {processing_key(f, spec) for cls in (RegisterOptions, OutputOptions) for f, spec in option_fields(cls)
+                if f.name in SHEET_OPTIONS}
+        for p in option_parameters(RegisterOptions()):
+            if p.name() in kept:
+                self.addParameter(p)
+        number = QgsProcessingParameterNumber
+        step = number(self.STEP, self.tr("Grid step, in the printed coordinates (empty: from the crossings)"),
+                      number.Double, None, optional=True)
+        step.setMinimum(0.0)
+        self.addParameter(advanced(step))
+        self.addParameter(advanced(QgsProcessingParameterCrs(
+            self.GRID_CRS, self.tr("CRS of the printed coordinates (empty: degrees of the sheet's datum, or the "
+                                   "sheet's CRS)"), optional=True)))
+        self._add_outputs()
+
+    def processAlgorithm(self, parameters, context, feedback):
+        crs = self.parameterAsCrs(parameters, self.SHEET_CRS, context)
+        if not crs.isValid():
+            raise QgsProcessingException(self.tr("Choose the CRS of the sheet."))
+        grid_crs = self.parameterAsCrs(parameters, self.GRID_CRS, context)
+        step = parameters.get(self.STEP)
+        params = {"hints": self.parameterAsFile(parameters, self.HINTS, context),
+                  "step": None if step in (None, "") else self.parameterAsDouble(parameters, self.STEP, context),
+                  "grid_crs": (grid_crs.authid() or grid_crs.toWkt()) if grid_crs.isValid() else None}
+        self._grid = (params, crs.authid() or crs.toWkt())
+        return super().processAlgorithm(parameters, context, feedback)
+
+    def _reference(self, parameters, context, options, target):
+        return None
+
+    def _run_arguments(self, values, output):
+        params, crs = self._grid
+        return GridParams.make(params, dataclasses.replace(output, crs=crs))
