@@ -9,258 +9,303 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="59"/>
+        <location filename="../plugin/action.py" line="60"/>
         <source>The reference layer &apos;{}&apos; could not be read ({}: {}).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="62"/>
+        <location filename="../plugin/action.py" line="63"/>
         <source>Auto-georeference &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="101"/>
+        <location filename="../plugin/action.py" line="102"/>
         <source>Auto-georeference of &apos;{}&apos; canceled; nothing was added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="106"/>
+        <location filename="../plugin/action.py" line="107"/>
         <source>Open the GCPs in the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="116"/>
+        <location filename="../plugin/action.py" line="117"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="141"/>
+        <location filename="../plugin/action.py" line="142"/>
         <source>{} (georeferenced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="143"/>
+        <location filename="../plugin/action.py" line="144"/>
         <source>{} GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="148"/>
+        <location filename="../plugin/action.py" line="149"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="172"/>
+        <location filename="../plugin/action.py" line="173"/>
         <source>Open report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="181"/>
+        <location filename="../plugin/action.py" line="182"/>
         <source>In the Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="181"/>
+        <location filename="../plugin/action.py" line="182"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="182"/>
+        <location filename="../plugin/action.py" line="183"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="207"/>
+        <location filename="../plugin/autogeoref.py" line="252"/>
         <source>Auto-georeference</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="108"/>
+        <location filename="../plugin/autogeoref.py" line="116"/>
         <source>The raster file to georeference (a raster layer read by GDAL).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="109"/>
+        <location filename="../plugin/autogeoref.py" line="117"/>
         <source>Target raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="114"/>
-        <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...) or a raster. The results are in its CRS.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/autogeoref.py" line="116"/>
+        <location filename="../plugin/autogeoref.py" line="126"/>
         <source>Reference layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="131"/>
+        <location filename="../plugin/autogeoref.py" line="141"/>
         <source>On by default for a target without georeferencing (the map canvas extent). On for a georeferenced target, Hamta ignores the target&apos;s georeferencing and searches here.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="141"/>
+        <location filename="../plugin/autogeoref.py" line="151"/>
         <source>Search area, {} (where to look for the target)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="145"/>
+        <location filename="../plugin/autogeoref.py" line="155"/>
         <source>A folder for the warped raster, the GCPs (GeoPackage and .points) and the reports; files of an earlier run there are replaced.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="148"/>
+        <location filename="../plugin/autogeoref.py" line="158"/>
         <source>Write the georeferenced raster even when the independent check does not confirm the result (it is then marked NOT VERIFIED).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="150"/>
+        <location filename="../plugin/autogeoref.py" line="160"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="154"/>
+        <location filename="../plugin/autogeoref.py" line="164"/>
         <source>Run</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="193"/>
+        <location filename="../plugin/autogeoref.py" line="231"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="195"/>
+        <location filename="../plugin/autogeoref.py" line="239"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="197"/>
+        <location filename="../plugin/autogeoref.py" line="241"/>
         <source>Choose an output folder.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="199"/>
+        <location filename="../plugin/autogeoref.py" line="244"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="79"/>
+        <location filename="../plugin/action.py" line="80"/>
         <source>Cancel</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="74"/>
+        <location filename="../plugin/action.py" line="75"/>
         <source>Auto-georeference &apos;{}&apos;: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="111"/>
+        <location filename="../plugin/action.py" line="112"/>
         <source>Details</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="251"/>
+        <location filename="../plugin/action.py" line="252"/>
         <source>&apos;{}&apos; onto &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="262"/>
+        <location filename="../plugin/action.py" line="264"/>
         <source>Method: {}; {} GCPs; transformation: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="266"/>
+        <location filename="../plugin/action.py" line="268"/>
         <source>Time: {:.1f} s</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="75"/>
+        <location filename="../plugin/action.py" line="76"/>
         <source>starting</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="112"/>
+        <location filename="../plugin/action.py" line="113"/>
         <source>Keep anyway</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="129"/>
+        <location filename="../plugin/action.py" line="130"/>
         <source>Keep &apos;{}&apos; (not verified)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="133"/>
+        <location filename="../plugin/action.py" line="134"/>
         <source>Keeping &apos;{}&apos;: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="219"/>
+        <location filename="../plugin/action.py" line="220"/>
         <source>{:.1f} m on the ground</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="219"/>
+        <location filename="../plugin/action.py" line="220"/>
         <source>{:.2f} m on the ground</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="222"/>
+        <location filename="../plugin/action.py" line="223"/>
         <source>{:.1f} px of &apos;{}&apos;</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="253"/>
+        <location filename="../plugin/action.py" line="255"/>
         <source>Independent check: {}; {} of {} sites agree; error within {} (tolerance {})</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="260"/>
+        <location filename="../plugin/action.py" line="262"/>
         <source>What may help:</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="268"/>
+        <location filename="../plugin/action.py" line="270"/>
         <source>Kept after the run: the outputs were written in {:.1f} s.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="279"/>
+        <location filename="../plugin/action.py" line="281"/>
         <source>&apos;Keep anyway&apos; here, or &apos;{}&apos; in the dialog: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="282"/>
+        <location filename="../plugin/action.py" line="284"/>
         <source>Search area</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="147"/>
+        <location filename="../plugin/autogeoref.py" line="157"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="113"/>
+        <location filename="../plugin/action.py" line="114"/>
         <source>&apos;{}&apos; not verified; nothing added.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="141"/>
+        <location filename="../plugin/action.py" line="142"/>
         <source>NOT VERIFIED {} (georeferenced)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="164"/>
+        <location filename="../plugin/action.py" line="165"/>
         <source>&apos;{}&apos; verified{}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="164"/>
+        <location filename="../plugin/action.py" line="165"/>
         <source>, within {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="165"/>
+        <location filename="../plugin/action.py" line="166"/>
         <source>&apos;{}&apos; NOT VERIFIED; check it before use.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="253"/>
+        <source>&apos;{}&apos; by its own printed grid</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="123"/>
+        <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...) or a raster. The results are in its CRS. None: a scanned map is georeferenced by the grid printed on it.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="184"/>
+        <source>By the sheet&apos;s own grid (no reference layer)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="187"/>
+        <source>The sheet&apos;s projection: the results are in it (sheets rarely print it).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="188"/>
+        <source>CRS of the sheet</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="190"/>
+        <source>GCP points (*.points)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="191"/>
+        <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="193"/>
+        <source>Hints (.points)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="234"/>
+        <source>Choose the CRS of the sheet, or a reference layer.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="236"/>
+        <source>Choose the hints: two or three crossings placed in the Georeferencer with their coordinates, saved as GCP points (.points); or choose a reference layer.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -369,6 +414,64 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/batch_algorithm.py" line="120"/>
         <source>The reference layer &apos;{}&apos; ({}) cannot be read by every pair of a batch: use a raster file, an XYZ or WMS layer, or save the layer&apos;s area as a GeoTIFF first.</source>
+        <translation type="unfinished"></translation>
+    </message>
+</context>
+<context>
+    <name>GridAlgorithm</name>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="52"/>
+        <source>georeference,scanned map,grid,graticule,sheet,GCP,crossings</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="55"/>
+        <source>Scanned map (to georeference)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="56"/>
+        <source>CRS of the sheet (its projection)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="57"/>
+        <source>Hints: crossings with their coordinates (.points)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="59"/>
+        <source>Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, with their coordinates as printed (degrees, or metres of the grid), saved as GCP points</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="63"/>
+        <source>Keep unverified results</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="71"/>
+        <source>Grid step (printed units)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="73"/>
+        <source>The step of the printed grid, in its coordinates (empty: the largest usual step the hints fit whose lines are printed)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="76"/>
+        <source>CRS of the printed coordinates</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="77"/>
+        <source>What the printed coordinates count in (empty: degrees of the sheet&apos;s datum when they look like degrees, else the sheet&apos;s CRS)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="85"/>
+        <source>Choose the CRS of the sheet.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -566,67 +669,67 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="143"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>Georeferenced raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="144"/>
+        <location filename="../processing/register_algorithm.py" line="147"/>
         <source>GCP points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>GCP points (*.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>VRT (*.vrt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="155"/>
         <source>Report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="155"/>
         <source>JSON (*.json)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="159"/>
+        <location filename="../processing/register_algorithm.py" line="162"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="160"/>
+        <location filename="../processing/register_algorithm.py" line="163"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="161"/>
+        <location filename="../processing/register_algorithm.py" line="164"/>
         <source>Number of GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="191"/>
+        <location filename="../processing/register_algorithm.py" line="194"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="247"/>
+        <location filename="../processing/register_algorithm.py" line="248"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -656,27 +759,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="157"/>
+        <location filename="../processing/register_algorithm.py" line="160"/>
         <source>Verdict of the independent check</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="158"/>
+        <location filename="../processing/register_algorithm.py" line="161"/>
         <source>Method that produced the result</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="250"/>
+        <location filename="../processing/register_algorithm.py" line="251"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="303"/>
+        <location filename="../processing/register_algorithm.py" line="314"/>
         <source>Verified by an independent check: {} of {} sites agree; estimated error within {}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="306"/>
+        <location filename="../processing/register_algorithm.py" line="317"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1296,22 +1399,22 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>HTML files (*.html)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="237"/>
+        <location filename="../processing/register_algorithm.py" line="239"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="256"/>
+        <location filename="../processing/register_algorithm.py" line="257"/>
         <source>Invalid parameter: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="262"/>
+        <location filename="../processing/register_algorithm.py" line="263"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1401,17 +1504,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>Quality report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="281"/>
+        <location filename="../processing/register_algorithm.py" line="292"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="314"/>
+        <location filename="../processing/register_algorithm.py" line="325"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1701,12 +1804,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="290"/>
+        <location filename="../processing/register_algorithm.py" line="301"/>
         <source>on</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="308"/>
+        <location filename="../processing/register_algorithm.py" line="319"/>
         <source>May help: {} ({}).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1768,6 +1871,16 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="core_strings.py" line="14"/>
         <source>Automatic (chosen by the check)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/catalogue.py" line="33"/>
+        <source>Georeference a scanned map by its grid</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/catalogue.py" line="33"/>
+        <source>Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as printed (degrees, or metres of the national grid) and save the GCP points (.points); choose the sheet&apos;s CRS. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each crossing becomes a GCP. The model (affine, or a polynomial where the projection bends the lines) is checked by predicting each grid line from the others: a result is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, saying why.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

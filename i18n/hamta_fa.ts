@@ -9,22 +9,22 @@
         <translation>همتا اجرا نمی‌شود: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="59"/>
+        <location filename="../plugin/action.py" line="60"/>
         <source>The reference layer &apos;{}&apos; could not be read ({}: {}).</source>
         <translation>لایهٔ مرجع «{}» خوانده نشد ({}: {}).</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="62"/>
+        <location filename="../plugin/action.py" line="63"/>
         <source>Auto-georeference &apos;{}&apos;</source>
         <translation>زمین‌مرجع‌سازی خودکار «{}»</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="101"/>
+        <location filename="../plugin/action.py" line="102"/>
         <source>Auto-georeference of &apos;{}&apos; canceled; nothing was added.</source>
         <translation>زمین‌مرجع‌سازی خودکار «{}» لغو شد؛ چیزی افزوده نشد.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="106"/>
+        <location filename="../plugin/action.py" line="107"/>
         <source>Open the GCPs in the Georeferencer</source>
         <translation>باز کردن نقاط کنترل در زمین‌مرجع‌ساز</translation>
     </message>
@@ -34,22 +34,22 @@
         <translation type="obsolete">«{}» ثبت شد، اما بررسی مستقل آن را تأیید نکرد ({}). رستر زمین‌مرجع نوشته نشد؛ گزارش را ببینید، یا «نگه داشتن نتیجهٔ تأییدنشده» را بزنید تا به هر حال نوشته شود.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="116"/>
+        <location filename="../plugin/action.py" line="117"/>
         <source>Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the details are in the message log).</source>
         <translation>همتا با خطایی پیش‌بینی‌نشده متوقف شد ({}: {})؛ چیزی افزوده نشد. لطفاً آن را گزارش کنید (جزئیات در گزارش پیام‌ها است).</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="141"/>
+        <location filename="../plugin/action.py" line="142"/>
         <source>{} (georeferenced)</source>
         <translation>{} (زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="143"/>
+        <location filename="../plugin/action.py" line="144"/>
         <source>{} GCPs</source>
         <translation>نقاط کنترل {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="148"/>
+        <location filename="../plugin/action.py" line="149"/>
         <source>The output &apos;{}&apos; could not be loaded.</source>
         <translation>خروجی «{}» بارگذاری نشد.</translation>
     </message>
@@ -74,62 +74,62 @@
         <translation type="obsolete">بررسی نشده</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="172"/>
+        <location filename="../plugin/action.py" line="173"/>
         <source>Open report</source>
         <translation>باز کردن گزارش</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="181"/>
+        <location filename="../plugin/action.py" line="182"/>
         <source>In the Georeferencer</source>
         <translation>در زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="181"/>
+        <location filename="../plugin/action.py" line="182"/>
         <source>In Raster ▸ Georeferencer</source>
         <translation>در رستر ◂ زمین‌مرجع‌ساز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="182"/>
+        <location filename="../plugin/action.py" line="183"/>
         <source>{}, open the raster '{}' (File ▸ Open Raster…), then File ▸ Load GCP Points… and paste the path of the GCP file, now on the clipboard: {}</source>
         <translation>{}، رستر «{}» را باز کنید (پرونده ◂ باز کردن رستر…)، سپس پرونده ◂ بارگذاری نقاط کنترل… و مسیر پروندهٔ نقاط کنترل را که اکنون در حافظهٔ موقت است بچسبانید: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="207"/>
+        <location filename="../plugin/autogeoref.py" line="252"/>
         <source>Auto-georeference</source>
         <translation>زمین‌مرجع‌سازی خودکار</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="108"/>
+        <location filename="../plugin/autogeoref.py" line="116"/>
         <source>The raster file to georeference (a raster layer read by GDAL).</source>
         <translation>پروندهٔ رستری که باید زمین‌مرجع شود (لایهٔ رستری که GDAL می‌خواند).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="109"/>
+        <location filename="../plugin/autogeoref.py" line="117"/>
         <source>Target raster</source>
         <translation>رستر هدف</translation>
     </message>
     <message>
         <location filename="../plugin/autogeoref.py" line="114"/>
         <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...) or a raster. The results are in its CRS.</source>
-        <translation>لایهٔ زمین‌مرجعی که هدف روی آن تطبیق داده می‌شود: یک نقشهٔ پایه (کاشی‌های XYZ، WMS، WMTS...) یا یک رستر. نتایج در سامانهٔ مختصات آن است.</translation>
+        <translation type="obsolete">لایهٔ زمین‌مرجعی که هدف روی آن تطبیق داده می‌شود: یک نقشهٔ پایه (کاشی‌های XYZ، WMS، WMTS...) یا یک رستر. نتایج در سامانهٔ مختصات آن است.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="116"/>
+        <location filename="../plugin/autogeoref.py" line="126"/>
         <source>Reference layer</source>
         <translation>لایهٔ مرجع</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="131"/>
+        <location filename="../plugin/autogeoref.py" line="141"/>
         <source>On by default for a target without georeferencing (the map canvas extent). On for a georeferenced target, Hamta ignores the target&apos;s georeferencing and searches here.</source>
         <translation>برای هدفِ بی‌زمین‌مرجع به‌طور پیش‌فرض روشن است (محدودهٔ بوم نقشه). اگر برای هدفِ زمین‌مرجع روشن شود، همتا زمین‌مرجعِ هدف را نادیده می‌گیرد و این‌جا را می‌جوید.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="141"/>
+        <location filename="../plugin/autogeoref.py" line="151"/>
         <source>Search area, {} (where to look for the target)</source>
         <translation>محدودهٔ جست‌وجو، {} (جایی که هدف جست‌وجو می‌شود)</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="145"/>
+        <location filename="../plugin/autogeoref.py" line="155"/>
         <source>A folder for the warped raster, the GCPs (GeoPackage and .points) and the reports; files of an earlier run there are replaced.</source>
         <translation>پوشه‌ای برای رستر تبدیل‌شده، نقاط کنترل (GeoPackage و ‎.points) و گزارش‌ها؛ پرونده‌های اجرای قبلی در آن جایگزین می‌شوند.</translation>
     </message>
@@ -139,37 +139,37 @@
         <translation type="obsolete">نگه داشتن نتیجهٔ تأییدنشده</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="148"/>
+        <location filename="../plugin/autogeoref.py" line="158"/>
         <source>Write the georeferenced raster even when the independent check does not confirm the result (it is then marked NOT VERIFIED).</source>
         <translation>رستر زمین‌مرجع را حتی وقتی بررسی مستقل نتیجه را تأیید نمی‌کند بنویس (با برچسب «تأیید نشده»).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="150"/>
+        <location filename="../plugin/autogeoref.py" line="160"/>
         <source>Output folder</source>
         <translation>پوشهٔ خروجی</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="154"/>
+        <location filename="../plugin/autogeoref.py" line="164"/>
         <source>Run</source>
         <translation>اجرا</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="193"/>
+        <location filename="../plugin/autogeoref.py" line="231"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation>رستری را که باید زمین‌مرجع شود انتخاب کنید (نخست آن را به پروژه بیفزایید).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="195"/>
+        <location filename="../plugin/autogeoref.py" line="239"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation>لایهٔ مرجعی جز هدف انتخاب کنید: یک نقشهٔ پایه یا رستری زمین‌مرجع.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="197"/>
+        <location filename="../plugin/autogeoref.py" line="241"/>
         <source>Choose an output folder.</source>
         <translation>یک پوشهٔ خروجی انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="199"/>
+        <location filename="../plugin/autogeoref.py" line="244"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation>«{}» زمین‌مرجع ندارد: محدودهٔ جست‌وجو را روشن کنید (به‌طور پیش‌فرض محدودهٔ بوم نقشه) تا همتا بداند در «{}» کجا را بجوید.</translation>
     </message>
@@ -179,17 +179,17 @@
         <translation type="obsolete">زمین‌مرجع‌سازی خودکار '{}': آغاز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="79"/>
+        <location filename="../plugin/action.py" line="80"/>
         <source>Cancel</source>
         <translation>لغو</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="74"/>
+        <location filename="../plugin/action.py" line="75"/>
         <source>Auto-georeference &apos;{}&apos;: {}</source>
         <translation>زمین‌مرجع‌سازی خودکار '{}': {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="111"/>
+        <location filename="../plugin/action.py" line="112"/>
         <source>Details</source>
         <translation>جزئیات</translation>
     </message>
@@ -209,7 +209,7 @@
         <translation type="obsolete">'{}' زمین‌مرجع شد اما تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="251"/>
+        <location filename="../plugin/action.py" line="252"/>
         <source>&apos;{}&apos; onto &apos;{}&apos;</source>
         <translation>'{}' روی '{}'</translation>
     </message>
@@ -219,22 +219,22 @@
         <translation type="obsolete">بررسی مستقل: {}؛ {} از {} محل موافق‌اند؛ کران خطا {} پیکسل (رواداری {:g} پیکسل)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="262"/>
+        <location filename="../plugin/action.py" line="264"/>
         <source>Method: {}; {} GCPs; transformation: {}</source>
         <translation>روش: {}؛ {} نقطهٔ کنترل زمینی؛ تبدیل: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="266"/>
+        <location filename="../plugin/action.py" line="268"/>
         <source>Time: {:.1f} s</source>
         <translation>زمان: {:.1f} ثانیه</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="75"/>
+        <location filename="../plugin/action.py" line="76"/>
         <source>starting</source>
         <translation>آغاز</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="112"/>
+        <location filename="../plugin/action.py" line="113"/>
         <source>Keep anyway</source>
         <translation>به هر حال نگه دار</translation>
     </message>
@@ -244,12 +244,12 @@
         <translation type="obsolete">تأیید نشد: جای «{}» با اطمینان یافته نشد، پس چیزی افزوده نشد.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="129"/>
+        <location filename="../plugin/action.py" line="130"/>
         <source>Keep &apos;{}&apos; (not verified)</source>
         <translation>نگه داشتن «{}» (تأییدنشده)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="133"/>
+        <location filename="../plugin/action.py" line="134"/>
         <source>Keeping &apos;{}&apos;: {}</source>
         <translation>نگه داشتن «{}»: {}</translation>
     </message>
@@ -264,74 +264,124 @@
         <translation type="obsolete"> (خطا حداکثر {})</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="219"/>
+        <location filename="../plugin/action.py" line="220"/>
         <source>{:.1f} m on the ground</source>
         <translation>{:.1f} متر روی زمین</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="219"/>
+        <location filename="../plugin/action.py" line="220"/>
         <source>{:.2f} m on the ground</source>
         <translation>{:.2f} متر روی زمین</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="222"/>
+        <location filename="../plugin/action.py" line="223"/>
         <source>{:.1f} px of &apos;{}&apos;</source>
         <translation>{:.1f} پیکسلِ «{}»</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="253"/>
+        <location filename="../plugin/action.py" line="255"/>
         <source>Independent check: {}; {} of {} sites agree; error within {} (tolerance {})</source>
         <translation>بررسی مستقل: {}؛ {} از {} محل موافق‌اند؛ خطا حداکثر {} (رواداری {})</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="260"/>
+        <location filename="../plugin/action.py" line="262"/>
         <source>What may help:</source>
         <translation>آنچه ممکن است کمک کند:</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="268"/>
+        <location filename="../plugin/action.py" line="270"/>
         <source>Kept after the run: the outputs were written in {:.1f} s.</source>
         <translation>پس از اجرا نگه داشته شد: خروجی‌ها در {:.1f} ثانیه نوشته شدند.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="279"/>
+        <location filename="../plugin/action.py" line="281"/>
         <source>&apos;Keep anyway&apos; here, or &apos;{}&apos; in the dialog: {}</source>
         <translation>«به هر حال نگه دار» در همین‌جا، یا «{}» در پنجره: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="282"/>
+        <location filename="../plugin/action.py" line="284"/>
         <source>Search area</source>
         <translation>محدودهٔ جست‌وجو</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="147"/>
+        <location filename="../plugin/autogeoref.py" line="157"/>
         <source>Keep unverified results</source>
         <translation>نگه‌داشتن نتایج تأییدنشده</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="113"/>
+        <location filename="../plugin/action.py" line="114"/>
         <source>&apos;{}&apos; not verified; nothing added.</source>
         <translation>'{}' تأیید نشد؛ چیزی افزوده نشد.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="141"/>
+        <location filename="../plugin/action.py" line="142"/>
         <source>NOT VERIFIED {} (georeferenced)</source>
         <translation>تأییدنشده {} (زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="164"/>
+        <location filename="../plugin/action.py" line="165"/>
         <source>&apos;{}&apos; verified{}.</source>
         <translation>'{}' تأیید شد{}.</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="164"/>
+        <location filename="../plugin/action.py" line="165"/>
         <source>, within {}</source>
         <translation>، با خطای کمتر از {}</translation>
     </message>
     <message>
-        <location filename="../plugin/action.py" line="165"/>
+        <location filename="../plugin/action.py" line="166"/>
         <source>&apos;{}&apos; NOT VERIFIED; check it before use.</source>
         <translation>'{}' تأیید نشد؛ پیش از استفاده آن را بررسی کنید.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/action.py" line="253"/>
+        <source>&apos;{}&apos; by its own printed grid</source>
+        <translation>«{}» با شبکهٔ چاپ‌شده روی خودش</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="123"/>
+        <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...) or a raster. The results are in its CRS. None: a scanned map is georeferenced by the grid printed on it.</source>
+        <translation>لایهٔ زمین‌مرجع که هدف روی آن تطبیق داده می‌شود: یک نقشهٔ پایه (کاشی‌های XYZ، WMS، WMTS...) یا یک رستر. نتایج در CRS آن است. هیچ‌کدام: نقشهٔ اسکن‌شده با شبکهٔ چاپ‌شده روی آن زمین‌مرجع می‌شود.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="184"/>
+        <source>By the sheet&apos;s own grid (no reference layer)</source>
+        <translation>با شبکهٔ خود برگه (بدون لایهٔ مرجع)</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="187"/>
+        <source>The sheet&apos;s projection: the results are in it (sheets rarely print it).</source>
+        <translation>تصویر نقشهٔ برگه: نتایج در آن است (برگه‌ها به‌ندرت آن را چاپ می‌کنند).</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="188"/>
+        <source>CRS of the sheet</source>
+        <translation>CRS برگه</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="190"/>
+        <source>GCP points (*.points)</source>
+        <translation>نقاط کنترل (*.points)</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="191"/>
+        <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points.</source>
+        <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز گذاشته شده‌اند، با مختصاتی که چاپ شده، ذخیره‌شده به‌صورت نقاط کنترل.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="193"/>
+        <source>Hints (.points)</source>
+        <translation>راهنماها (.points)</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="234"/>
+        <source>Choose the CRS of the sheet, or a reference layer.</source>
+        <translation>CRS برگه یا یک لایهٔ مرجع را انتخاب کنید.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="236"/>
+        <source>Choose the hints: two or three crossings placed in the Georeferencer with their coordinates, saved as GCP points (.points); or choose a reference layer.</source>
+        <translation>راهنماها را انتخاب کنید: دو یا سه تقاطع که در زمین‌مرجع‌ساز با مختصاتشان گذاشته و به‌صورت نقاط کنترل (.points) ذخیره شده‌اند؛ یا یک لایهٔ مرجع انتخاب کنید.</translation>
     </message>
 </context>
 <context>
@@ -442,6 +492,64 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <location filename="../processing/batch_algorithm.py" line="120"/>
         <source>The reference layer &apos;{}&apos; ({}) cannot be read by every pair of a batch: use a raster file, an XYZ or WMS layer, or save the layer&apos;s area as a GeoTIFF first.</source>
         <translation>لایهٔ مرجع «{}» ({}) را همهٔ جفت‌های یک دسته نمی‌توانند بخوانند: یک پروندهٔ رستری یا لایهٔ XYZ یا WMS به کار ببرید، یا نخست محدودهٔ لایه را به‌صورت GeoTIFF ذخیره کنید.</translation>
+    </message>
+</context>
+<context>
+    <name>GridAlgorithm</name>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="52"/>
+        <source>georeference,scanned map,grid,graticule,sheet,GCP,crossings</source>
+        <translation>زمین‌مرجع,نقشهٔ اسکن‌شده,شبکه,شبکهٔ جغرافیایی,برگه,نقطهٔ کنترل,تقاطع</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="55"/>
+        <source>Scanned map (to georeference)</source>
+        <translation>نقشهٔ اسکن‌شده (برای زمین‌مرجع کردن)</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="56"/>
+        <source>CRS of the sheet (its projection)</source>
+        <translation>CRS برگه (تصویر نقشهٔ آن)</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="57"/>
+        <source>Hints: crossings with their coordinates (.points)</source>
+        <translation>راهنماها: تقاطع‌ها با مختصاتشان (.points)</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="59"/>
+        <source>Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, with their coordinates as printed (degrees, or metres of the grid), saved as GCP points</source>
+        <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز QGIS گذاشته شده‌اند، با مختصاتی که چاپ شده (درجه، یا متر شبکه)، ذخیره‌شده به‌صورت نقاط کنترل</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="63"/>
+        <source>Keep unverified results</source>
+        <translation>نگه‌داشتن نتایج تأییدنشده</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="71"/>
+        <source>Grid step (printed units)</source>
+        <translation>گام شبکه (به واحد چاپ‌شده)</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="73"/>
+        <source>The step of the printed grid, in its coordinates (empty: the largest usual step the hints fit whose lines are printed)</source>
+        <translation>گام شبکهٔ چاپ‌شده، به مختصات آن (خالی: بزرگ‌ترین گام متداولی که راهنماها با آن جورند و خطوطش چاپ شده است)</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="76"/>
+        <source>CRS of the printed coordinates</source>
+        <translation>CRS مختصات چاپ‌شده</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="77"/>
+        <source>What the printed coordinates count in (empty: degrees of the sheet&apos;s datum when they look like degrees, else the sheet&apos;s CRS)</source>
+        <translation>مختصات چاپ‌شده به چه واحدی است (خالی: درجهٔ داده‌مبنای برگه وقتی شبیه درجه‌اند، وگرنه CRS برگه)</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="85"/>
+        <source>Choose the CRS of the sheet.</source>
+        <translation>CRS برگه را انتخاب کنید.</translation>
     </message>
 </context>
 <context>
@@ -638,67 +746,67 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>بذر تصادفی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="143"/>
+        <location filename="../processing/register_algorithm.py" line="146"/>
         <source>Georeferenced raster</source>
         <translation>رستر زمین‌مرجع‌شده</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="144"/>
+        <location filename="../processing/register_algorithm.py" line="147"/>
         <source>GCP points</source>
         <translation>نقاط کنترل زمینی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation>پرونده نقاط کنترل برای Georeferencer کیوجی‌آی‌اس</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>GCP points (*.points)</source>
         <translation>نقاط کنترل (*.points)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation>تصویر هدف همراه نقاط کنترل، بدون بازنمونه‌برداری (VRT)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="152"/>
         <source>VRT (*.vrt)</source>
         <translation>VRT (*.vrt)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="155"/>
         <source>Report</source>
         <translation>گزارش</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="155"/>
         <source>JSON (*.json)</source>
         <translation>JSON (*.json)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="159"/>
+        <location filename="../processing/register_algorithm.py" line="162"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation>RMSE نقاط کنترل (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="160"/>
+        <location filename="../processing/register_algorithm.py" line="163"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation>RMS به روش حذف تک‌نقطه (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="161"/>
+        <location filename="../processing/register_algorithm.py" line="164"/>
         <source>Number of GCPs</source>
         <translation>تعداد نقاط کنترل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="191"/>
+        <location filename="../processing/register_algorithm.py" line="194"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation>{} باید پرونده رستری قابل خواندن با GDAL باشد، نه لایه‌ای از نوع «{}».</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="247"/>
+        <location filename="../processing/register_algorithm.py" line="248"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation>ثبت تصویر لغو شد؛ هیچ خروجی‌ای نوشته نشد.</translation>
     </message>
@@ -728,27 +836,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>ثبت تصویر SAR روی تصویر نوری</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="157"/>
+        <location filename="../processing/register_algorithm.py" line="160"/>
         <source>Verdict of the independent check</source>
         <translation>رأی بررسی مستقل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="158"/>
+        <location filename="../processing/register_algorithm.py" line="161"/>
         <source>Method that produced the result</source>
         <translation>روشی که نتیجه را به دست داد</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="250"/>
+        <location filename="../processing/register_algorithm.py" line="251"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation>ثبت تصویر تأیید نشد: {}. هیچ خروجی زمین‌مرجع‌شده‌ای نوشته نشد؛ برای نوشتن آن در هر صورت، گزینهٔ «نگه‌داشتن نتایج تأییدنشده» را فعال کنید.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="303"/>
+        <location filename="../processing/register_algorithm.py" line="314"/>
         <source>Verified by an independent check: {} of {} sites agree; estimated error within {}.</source>
         <translation>تأییدشده با بررسی مستقل: {} محل از {} محل هم‌خوان‌اند؛ خطای برآوردشده حداکثر {}.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="306"/>
+        <location filename="../processing/register_algorithm.py" line="317"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation>تأیید نشد ({}): {}</translation>
     </message>
@@ -1368,22 +1476,22 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل‌های بیرون از هدف</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>HTML files (*.html)</source>
         <translation>پرونده‌های HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="237"/>
+        <location filename="../processing/register_algorithm.py" line="239"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation>نقاط کنترل در یک GeoPackage نوشته می‌شوند: یک پروندهٔ ‎.gpkg انتخاب کنید (داده‌شده: «{}»).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="256"/>
+        <location filename="../processing/register_algorithm.py" line="257"/>
         <source>Invalid parameter: {}</source>
         <translation>پارامتر نامعتبر: {}</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="262"/>
+        <location filename="../processing/register_algorithm.py" line="263"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation>همتا با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {})؛ هیچ خروجی‌ای نوشته نشد. لطفاً آن را گزارش کنید.</translation>
     </message>
@@ -1478,17 +1586,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل به پیکسل (مرجع بدون زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="154"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>Quality report (HTML)</source>
         <translation>گزارش کیفیت (HTML)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="281"/>
+        <location filename="../processing/register_algorithm.py" line="292"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation>{} (گزینهٔ «{}» را فعال کنید).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="314"/>
+        <location filename="../processing/register_algorithm.py" line="325"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation>{}؛ RMSE گزارش‌شده از خود برازش {:.3f} px، RMS حذف تک‌نقطه {} px (باقی‌مانده‌های برازش، نه دقت آن).</translation>
     </message>
@@ -1778,12 +1886,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>همهٔ مرجع؛ برای سرویس نقشه الزامی است</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="290"/>
+        <location filename="../processing/register_algorithm.py" line="301"/>
         <source>on</source>
         <translation>روشن</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="308"/>
+        <location filename="../processing/register_algorithm.py" line="319"/>
         <source>May help: {} ({}).</source>
         <translation>شاید کمک کند: {} ({}).</translation>
     </message>
@@ -1846,6 +1954,16 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <location filename="core_strings.py" line="14"/>
         <source>Automatic (chosen by the check)</source>
         <translation>خودکار (به انتخاب بررسی مستقل)</translation>
+    </message>
+    <message>
+        <location filename="../processing/catalogue.py" line="33"/>
+        <source>Georeference a scanned map by its grid</source>
+        <translation>زمین‌مرجع کردن نقشهٔ اسکن‌شده با شبکهٔ آن</translation>
+    </message>
+    <message>
+        <location filename="../processing/catalogue.py" line="33"/>
+        <source>Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as printed (degrees, or metres of the national grid) and save the GCP points (.points); choose the sheet&apos;s CRS. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each crossing becomes a GCP. The model (affine, or a polynomial where the projection bends the lines) is checked by predicting each grid line from the others: a result is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, saying why.</source>
+        <translation>برگهٔ نقشهٔ اسکن‌شده را با شبکه یا شبکهٔ جغرافیایی چاپ‌شده روی آن، بدون لایهٔ مرجع، زمین‌مرجع می‌کند. دو یا سه تقاطع خطوط چاپ‌شده را تقریبی در زمین‌مرجع‌ساز QGIS بگذارید، مختصاتشان را همان‌طور که چاپ شده بنویسید (درجه، یا متر شبکهٔ ملی) و نقاط کنترل (.points) را ذخیره کنید؛ CRS برگه را انتخاب کنید. همتا ابتدا کل شبکهٔ چاپ‌شده و سپس هر تقاطع برگه را با دقت کسری از پیکسل پیدا می‌کند؛ هر تقاطع یک نقطهٔ کنترل می‌شود. مدل (آفین، یا چندجمله‌ای جایی که تصویر نقشه خطوط را خم می‌کند) با پیش‌بینی هر خط شبکه از روی بقیه سنجیده می‌شود: نتیجه فقط وقتی تأیید می‌شود که این سنجش در دقت خواسته‌شده، به پیکسل اسکن، باشد. برگه‌ای که شبکه‌اش پیدا نشود، با گفتن دلیل، رد می‌شود.</translation>
     </message>
 </context>
 </TS>

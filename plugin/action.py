@@ -50,7 +50,8 @@ class AutoGeoreference:
             self.push(tr("Hamta cannot run: {}").format(exc), Qgis.Critical)
             return None
         try:
-            reference = prepare_reference(job.reference, job.extent, job.target, job.options.max_working_pixels)
+            reference = None if job.reference is None else prepare_reference(job.reference, job.extent, job.target,
+                                                                               job.options.max_working_pixels)
         except HamtaError as exc:
             self.push(str(exc), Qgis.Critical)
             return None
@@ -60,7 +61,7 @@ class AutoGeoreference:
                 job.reference.name(), type(exc).__name__, exc), Qgis.Critical)
             return None
         task = RegisterTask(tr("Auto-georeference '{}'").format(job.target_name), job.target, reference, job.folder,
-                            job.options, job.accept_unverified, done=self.show_outcome)
+                            job.options, job.accept_unverified, done=self.show_outcome, grid=job.grid)
         task.job = job
         self.tasks.append(task)
         task.bar_item = self.progress_item(task)
@@ -248,7 +249,8 @@ def details_text(ended: Ended) -> str:
     the method, the GCPs, where the target was found and how long the whole run took."""
     job, result = ended.job, ended.result
     v = result.verification
-    lines = [tr("'{}' onto '{}'").format(job.target_name, job.reference.name())]
+    lines = [tr("'{}' onto '{}'").format(job.target_name, job.reference.name()) if job.reference is not None
+             else tr("'{}' by its own printed grid").format(job.target_name)]
     if v is not None:
         lines.append(tr("Independent check: {}; {} of {} sites agree; error within {} (tolerance {})").format(
             tr(v.verdict), v.n_agree, v.n_sites, error_text(job, result, v.error_bound_px) or "–",

@@ -20,9 +20,15 @@ from qgis.core import (
     QgsRasterLayer,
     QgsSettings,
 )
-from qgis.gui import QgsExtentGroupBox, QgsFileWidget, QgsMapLayerComboBox, QgsMessageBar
+from qgis.gui import (
+    QgsExtentGroupBox,
+    QgsFileWidget,
+    QgsMapLayerComboBox,
+    QgsMessageBar,
+    QgsProjectionSelectionWidget,
+)
 from qgis.PyQt.QtCore import QCoreApplication
-from qgis.PyQt.QtWidgets import QCheckBox, QComboBox, QDialog, QDialogButtonBox, QFormLayout, QVBoxLayout
+from qgis.PyQt.QtWidgets import QCheckBox, QComboBox, QDialog, QDialogButtonBox, QFormLayout, QGroupBox, QVBoxLayout
 
 from ..core.options import MODEL, RegisterOptions
 from .task import tr
@@ -77,15 +83,17 @@ def visible_layers():
 @dataclasses.dataclass(frozen=True)
 class Job:
     """One registration as the dialog set it: ``extent`` is the search area text
-    ('xmin,ymin,xmax,ymax,EPSG:code', in that CRS) or None."""
+    ('xmin,ymin,xmax,ymax,EPSG:code', in that CRS) or None; without a ``reference``, ``grid`` holds the
+    sheet's own grid's parameters (hints, crs: see :class:`hamta.core.grid.register.GridParams`)."""
 
     target: str
     target_name: str
-    reference: QgsRasterLayer
+    reference: Optional[QgsRasterLayer]
     extent: Optional[str]
     folder: str
     options: RegisterOptions
     accept_unverified: bool
+    grid: Optional[dict] = None
 
 
 class AutoGeoreferenceDialog(QDialog):
@@ -110,9 +118,11 @@ class AutoGeoreferenceDialog(QDialog):
 
         self.reference = QgsMapLayerComboBox(self)
         self.reference.setFilters(QgsMapLayerProxyModel.RasterLayer)
+        self.reference.setAllowEmptyLayer(True)
         self.reference.setLayer(basemap(visible_layers(), self.target.currentLayer()))
         self.reference.setToolTip(tr("The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, "
-                                     "WMTS...) or a raster. The results are in its CRS."))
+                                     "WMTS...) or a raster. The results are in its CRS. None: a scanned map is "
+                                     "georeferenced by the grid printed on it."))
         form.addRow(tr("Reference layer"), self.reference)
 
         self.model = QComboBox(self)
@@ -157,14 +167,42 @@ class AutoGeoreferenceDialog(QDialog):
         layout = QVBoxLayout(self)
         layout.addWidget(self.bar)
         layout.addLayout(form)
+        layout.addWidget(self.sheet_box())
         layout.addWidget(self.area)
         layout.addStretch(1)
         layout.addWidget(self.buttons)
 
         self._folder_for = None  # the target whose default folder the folder field shows
         self.target.layerChanged.connect(self.target_changed)
+        self.reference.layerChanged.connect(self.reference_changed)
         self.target_changed(self.target.currentLayer())
+        self.reference_changed(self.reference.currentLayer())
         self.resize(620, 0)
+
+    def sheet_box(self):
+        """The settings of a sheet georeferenced by its own grid (shown without a reference layer)."""
+        self.sheet = QGroupBox(tr("By the sheet's own grid (no reference layer)"), self)
+        form = QFormLayout(self.sheet)
+        self.sheet_crs = QgsProjectionSelectionWidget(self.sheet)
+        self.sheet_crs.setToolTip(tr("The sheet's projection: the results are in it (sheets rarely print it)."))
+        form.addRow(tr("CRS of the sheet"), self.sheet_crs)
+        self.hints = QgsFileWidget(self.sheet)
+        self.hints.setFilter(tr("GCP points (*.points)"))
+        self.hints.setToolTip(tr("Two or three crossings of the printed lines placed roughly in the Georeferencer "
+                                 "with their coordinates as printed, saved as GCP points."))
+        form.addRow(tr("Hints (.points)"), self.hints)
+        return self.sheet
+
+    def reference_changed(self, layer):
+        """The sheet's settings without a reference layer; its hints default to the Georeferencer's file of the
+        target (``<raster>.points``) where there is one."""
+        self.sheet.setVisible(layer is None)
+        self.area.setVisible(layer is not None)
+        target = self.target.currentLayer()
+        if layer is None and target is not None and not self.hints.filePath():
+            saved = target.source() + ".points"
+            if os.path.isfile(saved):
+                self.hints.setFilePath(saved)
 
     def target_changed(self, layer):
         """Search area on for a target without georeferencing; the default folder follows the target."""
@@ -191,11 +229,18 @@ class AutoGeoreferenceDialog(QDialog):
         target, reference = self.target.currentLayer(), self.reference.currentLayer()
         if target is None:
             return tr("Choose the raster to georeference (add it to the project first).")
-        if reference is None or reference is target:
+        if reference is None:
+            if not self.sheet_crs.crs().isValid():
+                return tr("Choose the CRS of the sheet, or a reference layer.")
+            if not os.path.isfile(self.hints.filePath()):
+                return tr("Choose the hints: two or three crossings placed in the Georeferencer with their "
+                          "coordinates, saved as GCP points (.points); or choose a reference layer.")
+        elif reference is target:
             return tr("Choose a reference layer other than the target: a basemap or a georeferenced raster.")
         if not self.folder.filePath().strip():
             return tr("Choose an output folder.")
-        if self.extent() is None and not is_georeferenced(target.source()) and reference.providerType() != "gdal":
+        if reference is not None and self.extent() is None and not is_georeferenced(target.source()) \
+                and reference.providerType() != "gdal":
             return tr("'{}' has no georeferencing: turn on the search area (the map canvas extent by default) so "
                       "that Hamta knows where to look in '{}'.").format(target.name(), reference.name())
         return None
@@ -212,10 +257,14 @@ class AutoGeoreferenceDialog(QDialog):
         self.accept()
 
     def job(self) -> Job:
-        target = self.target.currentLayer()
-        extent = self.extent()
+        target, reference = self.target.currentLayer(), self.reference.currentLayer()
+        extent = self.extent() if reference is not None else None
         ignore = extent is not None and is_georeferenced(target.source())  # the user chose where to look
         options = RegisterOptions(model=self.model.currentData(), local=self.local.isChecked(), extent=extent,
                                   target_georef="ignore" if ignore else "auto")
-        return Job(target.source(), target.name(), self.reference.currentLayer(), options.extent,
-                   self.folder.filePath().strip(), options, self.keep.isChecked())
+        grid = None
+        if reference is None:
+            crs = self.sheet_crs.crs()
+            grid = {"hints": self.hints.filePath(), "crs": crs.authid() or crs.toWkt()}
+        return Job(target.source(), target.name(), reference, options.extent, self.folder.filePath().strip(), options,
+                   self.keep.isChecked(), grid)

@@ -42,7 +42,8 @@ class _Ends:
 class RegisterTask(_Ends, QgsTask):
     """Registers ``target`` (a raster file) onto ``reference`` (a reference the core reads, see
     :mod:`hamta.core.reference`; or a :class:`hamta.processing.reference.Rendering` of a layer, written
-    here first) and writes the outputs into ``folder``.
+    here first) and writes the outputs into ``folder``; without a reference, ``grid`` ({hints, crs}) has a
+    scanned sheet georeferenced by its own printed grid (:mod:`hamta.core.grid`).
 
     After ``finished``: ``outcome`` is one of :data:`WRITTEN` (the outputs: verified, or unverified and
     kept), :data:`UNVERIFIED` (not verified: only the report was written, ``error`` says why),
@@ -51,9 +52,9 @@ class RegisterTask(_Ends, QgsTask):
     what :func:`hamta.core.run` returned.
     """
 
-    def __init__(self, description, target, reference, folder, options, accept_unverified, done=None):
+    def __init__(self, description, target, reference, folder, options, accept_unverified, done=None, grid=None):
         super().__init__(description, QgsTask.CanCancel)
-        self.target, self.reference, self.folder = target, reference, folder
+        self.target, self.reference, self.folder, self.grid = target, reference, folder, grid
         self.options, self.accept_unverified = options, accept_unverified
         self.done = done
         self.result, self.written, self.error, self.trace = None, {}, None, ""
@@ -80,9 +81,10 @@ class RegisterTask(_Ends, QgsTask):
 
                 self._progress(0.0, "reading the reference layer")
                 self.reference = RasterReference(self.reference.write(self._block_feedback()))
+            grid = {} if self.grid is None else {"method": "grid", "params": self._grid_params()}
             self.result, self.written = run(self.target, self.reference, OutputPaths.in_folder(self.folder),
                                             options=self.options, accept_unverified=self.accept_unverified,
-                                            progress=self._progress, is_canceled=self.isCanceled)
+                                            progress=self._progress, is_canceled=self.isCanceled, **grid)
             self.outcome = WRITTEN
         except RegistrationCanceled:
             self.outcome = CANCELED
@@ -97,6 +99,11 @@ class RegisterTask(_Ends, QgsTask):
         if self.outcome in (WRITTEN, UNVERIFIED):  # the run ended with a verdict: its bar ends full
             self._progress(1.0, "done")
         return self.outcome in (WRITTEN, UNVERIFIED)  # a run that ended with a verdict did not fail
+
+    def _grid_params(self):
+        from ..core.grid.register import GridParams
+
+        return GridParams(self.grid["hints"], self.grid["crs"])
 
     def _block_feedback(self):
         """A feedback that :meth:`cancel` cancels: the layer's read stops with the task."""

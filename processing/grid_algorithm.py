@@ -54,9 +54,12 @@ class GridAlgorithm(RegisterAlgorithm):
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Scanned map (to georeference)")))
         self.addParameter(QgsProcessingParameterCrs(self.SHEET_CRS, self.tr("CRS of the sheet (its projection)")))
-        self.addParameter(QgsProcessingParameterFile(
-            self.HINTS, self.tr("Crossings placed with their printed coordinates (.points of the Georeferencer)"),
-            extension="points"))
+        hints = QgsProcessingParameterFile(self.HINTS, self.tr("Hints: crossings with their coordinates (.points)"),
+                                           extension="points")
+        hints.setHelp(self.tr("Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, "
+                              "with their coordinates as printed (degrees, or metres of the grid), saved as GCP "
+                              "points"))
+        self.addParameter(hints)
         self.addParameter(QgsProcessingParameterBoolean(self.KEEP_UNVERIFIED, self.tr("Keep unverified results"),
                                                         False))
         kept = {processing_key(f, spec) for cls in (RegisterOptions, OutputOptions) for f, spec in option_fields(cls)
@@ -65,13 +68,15 @@ class GridAlgorithm(RegisterAlgorithm):
             if p.name() in kept:
                 self.addParameter(p)
         number = QgsProcessingParameterNumber
-        step = number(self.STEP, self.tr("Grid step, in the printed coordinates (empty: from the crossings)"),
-                      number.Double, None, optional=True)
+        step = number(self.STEP, self.tr("Grid step (printed units)"), number.Double, None, optional=True)
         step.setMinimum(0.0)
+        step.setHelp(self.tr("The step of the printed grid, in its coordinates (empty: the largest usual step the "
+                             "hints fit whose lines are printed)"))
         self.addParameter(advanced(step))
-        self.addParameter(advanced(QgsProcessingParameterCrs(
-            self.GRID_CRS, self.tr("CRS of the printed coordinates (empty: degrees of the sheet's datum, or the "
-                                   "sheet's CRS)"), optional=True)))
+        grid_crs = QgsProcessingParameterCrs(self.GRID_CRS, self.tr("CRS of the printed coordinates"), optional=True)
+        grid_crs.setHelp(self.tr("What the printed coordinates count in (empty: degrees of the sheet's datum when "
+                                 "they look like degrees, else the sheet's CRS)"))
+        self.addParameter(advanced(grid_crs))
         self._add_outputs()
 
     def processAlgorithm(self, parameters, context, feedback):

@@ -8,6 +8,7 @@ import pathlib
 import re
 import time
 
+import numpy as np
 import pytest
 from qgis.core import Qgis, QgsApplication, QgsCoordinateReferenceSystem, QgsProject, QgsRasterLayer, QgsRectangle
 from qgis.gui import QgsMapCanvas, QgsMessageBar
@@ -330,3 +331,65 @@ def test_one_name_for_keeping_unverified_results(session, provider):
         assert found is not None, alg
         assert found.parameterDefinition("KEEP_UNVERIFIED").description() == KEEP_UNVERIFIED, alg
     assert f"(QGIS: '{KEEP_UNVERIFIED}')" in spelled(Advice("accept_unverified", True, "why"))
+
+
+SHEET = "graticule-on-utm"  # a sheet of the synthetic family (hamta.bench.sheets)
+
+
+@pytest.fixture
+def sheet_session(qgis_app, tmp_path, monkeypatch):
+    from hamta.plugin.plugin import HamtaPlugin
+
+    monkeypatch.setenv("HAMTA_CACHE", str(tmp_path / "cache"))
+    from hamta.bench.sheets import SPECS, render
+
+    sheet = render(next(s for s in SPECS if s.name == SHEET), str(tmp_path))
+    with open(sheet.path + ".points", "w") as f:  # where the Georeferencer saves a raster's GCPs
+        f.write("mapX,mapY,sourceX,sourceY,enable,dX,dY,residual\n")
+        for x, y, gx, gy in sheet.hints(2, seed=4):
+            f.write(f"{gx},{gy},{x},{-y},1,0,0,0\n")
+    project = QgsProject.instance()
+    project.clear()
+    layer = QgsRasterLayer(sheet.path, "sheet")
+    assert layer.isValid()
+    project.addMapLayer(layer)
+    iface = Iface()
+    iface.active = layer
+    plugin = HamtaPlugin(iface)
+    plugin.initGui()
+    yield plugin, iface, sheet
+    plugin.unload()
+    project.clear()
+    sip.delete(iface.window)
+
+
+def test_one_click_georeferences_a_sheet_by_its_grid_when_no_reference_is_chosen(sheet_session):
+    plugin, iface, sheet = sheet_session
+    plugin.action.trigger()
+    dialog = plugin.autogeoref.dialog
+    assert dialog.reference.currentLayer() is None and dialog.sheet.isVisibleTo(dialog)
+    assert not dialog.area.isVisibleTo(dialog)
+    assert dialog.hints.filePath() == sheet.path + ".points"
+    dialog.run_button.click()
+    assert dialog.isVisible() and "CRS of the sheet" in dialog.bar.currentItem().text()
+    dialog.sheet_crs.setCrs(QgsCoordinateReferenceSystem("EPSG:32633"))
+    dialog.run_button.click()
+    assert not dialog.isVisible()
+    wait_for_tasks(plugin.autogeoref)
+    folder = dialog.folder.filePath()
+    [(level, text, buttons)] = messages(iface)
+    assert level == Qgis.Success and text.startswith("'sheet' verified"), text
+    assert "Open the GCPs in the Georeferencer" in buttons
+    layers = {layer.source(): layer for layer in QgsProject.instance().mapLayers().values()}
+    raster = layers[os.path.join(folder, "registered.tif")]
+    assert raster.crs().authid() == "EPSG:32633"
+    report = pathlib.Path(folder, "report.json")
+    assert json.loads(report.read_text())["method"] == "grid"
+    from pyproj import Transformer
+
+    from hamta.core.mapping import map_points_from_report
+
+    nodes = sheet.nodes()
+    truth = np.column_stack(Transformer.from_crs("EPSG:4326", "EPSG:32633", always_xy=True).transform(*nodes.T))
+    got = np.array([r["map"] for r in map_points_from_report(str(report), sheet.to_scan(nodes))])
+    assert np.hypot(*(got - truth).T).max() < 2.5 * sheet.spec.pixel_m

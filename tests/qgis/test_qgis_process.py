@@ -76,3 +76,19 @@ def test_qgis_process_takes_an_xyz_layer_and_an_extent(qgis_env, xyz_source, cro
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["results"]["VERDICT"] == "verified"
     assert (tmp_path / "reg.tif").is_file()
+
+
+def test_qgis_process_georeferences_a_sheet_by_its_grid(qgis_env, tmp_path):
+    from hamta.bench.sheets import SPECS, render
+
+    spec = next(s for s in SPECS if s.name == "graticule-lambert-conic")
+    sheet = render(spec, str(tmp_path))
+    hints = tmp_path / "hints.points"
+    hints.write_text("mapX,mapY,sourceX,sourceY,enable,dX,dY,residual\n" + "".join(
+        f"{gx},{gy},{x},{-y},1,0,0,0\n" for x, y, gx, gy in sheet.hints(3, seed=0)))
+    proc = _qgis_process(qgis_env, "--json", "run", "hamta:georeferencebygrid", "--", f"TARGET={sheet.path}",
+                         "SHEET_CRS=EPSG:2154", f"HINTS={hints}", f"OUTPUT={tmp_path / 'sheet.tif'}",
+                         f"REPORT={tmp_path / 'report.json'}")
+    assert proc.returncode == 0, proc.stderr
+    results = json.loads(proc.stdout)["results"]
+    assert results["VERDICT"] == "verified" and (tmp_path / "sheet.tif").is_file()
