@@ -236,3 +236,69 @@ def _scan(canvas, spec: SheetSpec, rng):
         scan[(xx + yy) < 0.22 * (sw + sh) / 2] = 20
     scan += rng.normal(0, spec.noise, scan.shape)
     return np.clip(scan, 0, 255).astype(np.uint8), canvas_to_scan
+
+
+@dataclass
+class LargeSheet:
+    """A scan too large to hold (a tiled GeoTIFF written tile by tile): a 1 km grid turned ``angle_deg``,
+    ``spacing_px`` apart, on grainy paper with map strokes. Truth: :meth:`to_scan` (an affine)."""
+
+    path: str
+    width: int
+    height: int
+    matrix: np.ndarray  # (2, 3): grid metres (x, y, 1) -> scan px
+    crs: str = "EPSG:32633"
+    step: float = 1000.0
+
+    def to_scan(self, grid_xy) -> np.ndarray:
+        g = np.atleast_2d(np.asarray(grid_xy, float))
+        return g @ self.matrix[:, :2].T + self.matrix[:, 2]
+
+    def hints(self, k: int = 2) -> np.ndarray:
+        """``k`` crossings near the middle, 3 px off: rows of scan x, y, grid x, y."""
+        inverse = np.linalg.inv(np.vstack([self.matrix, [0, 0, 1]]))
+        mid = inverse[:2] @ [self.width / 2, self.height / 2, 1]
+        base = np.round(mid / self.step) * self.step
+        grid = base + np.array([[0, 0], [3, 1], [-1, 3]])[:k] * self.step
+        return np.column_stack([self.to_scan(grid) + [[3.0, -2.0], [-2.0, 3.0], [2.0, 2.0]][:k], grid])
+
+
+def large_sheet(path: str, width: int, height: int, spacing_px: float = 700.0, angle_deg: float = 0.8,
+                seed: int = 0, tile: int = 2048) -> LargeSheet:
+    """Write a :class:`LargeSheet` of ``width`` x ``height`` px to ``path``, within a few tiles of memory."""
+    import cv2
+    import rasterio
+
+    rng = np.random.default_rng(seed)
+    a = math.radians(angle_deg)
+    scale = spacing_px / 1000.0
+    linear = scale * np.array([[math.cos(a), math.sin(a)], [math.sin(a), -math.cos(a)]])  # northings up, rows down
+    origin = np.array([width / 2, height / 2]) - linear @ [500000.0, 5540000.0]
+    sheet = LargeSheet(path, width, height, np.column_stack([linear, origin]))
+    inverse = np.linalg.inv(np.vstack([sheet.matrix, [0, 0, 1]]))
+    corners = np.array([[0, 0, 1], [width, 0, 1], [0, height, 1], [width, height, 1]]) @ inverse[:2].T
+    lo, hi = np.floor(corners.min(axis=0) / 1000) - 1, np.ceil(corners.max(axis=0) / 1000) + 1
+    strokes = [rng.uniform([0, 0], [width, height], (2, 2)) for _ in range(int(width * height / 4e6))]
+    profile = dict(driver="GTiff", width=width, height=height, count=1, dtype="uint8", tiled=True, blockxsize=512,
+                   blockysize=512, compress="deflate")
+    with rasterio.open(path, "w", **profile) as ds:
+        for y0 in range(0, height, tile):
+            for x0 in range(0, width, tile):
+                w, h = min(tile, width - x0), min(tile, height - y0)
+                paper = (232 + rng.normal(0, 4, (h, w))).astype(np.float32)
+                image = np.clip(paper, 0, 255).astype(np.uint8)
+                for p, q in strokes:
+                    cv2.line(image, _fine_at(p, x0, y0), _fine_at(q, x0, y0), 90, 2, cv2.LINE_AA, shift=2)
+                for axis in (0, 1):
+                    for k in np.arange(lo[axis], hi[axis] + 1) * 1000:
+                        ends = np.empty((2, 2))
+                        ends[:, axis], ends[:, 1 - axis] = k, [lo[1 - axis] * 1000, hi[1 - axis] * 1000]
+                        p, q = sheet.to_scan(ends)
+                        cv2.line(image, _fine_at(p, x0, y0), _fine_at(q, x0, y0), 60, 2, cv2.LINE_AA, shift=2)
+                ds.write(image, 1, window=rasterio.windows.Window(x0, y0, w, h))
+    return sheet
+
+
+def _fine_at(xy, x0, y0):
+    """Scan px (corner convention) as quarter-pixel points (``shift=2``) of the tile at (x0, y0)."""
+    return tuple(int(v) for v in np.round((np.asarray(xy) - [x0, y0] - 0.5) * 4))

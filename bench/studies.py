@@ -9,6 +9,7 @@ def all_studies():
     from .goals.basemap_requests import STUDY as basemap_requests
     from .goals.batch import STUDY as batch
     from .goals.large import STUDY as large
+    from .goals.scanned import STUDY as scanned
     from .goals.speed import STUDY as speed
     from .goals.writing import STUDY as writing
     from .goals.years_apart import STUDY as years_apart
@@ -18,4 +19,4 @@ def all_studies():
     from .reproductions.sibrif import STUDY as sibrif
 
     return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, basemap_requests,
-            speed, years_apart]
+            speed, years_apart, scanned]

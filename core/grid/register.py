@@ -10,6 +10,7 @@ predicted by the model fitted without its grid line (:func:`hamta.core.grid.shee
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import time
@@ -63,8 +64,12 @@ class GridParams:
         if params.get("hints") is None:
             raise InputError("Georeferencing a sheet by its printed grid needs two or three crossings placed with "
                              "their coordinates (a QGIS Georeferencer .points file) until the sheet's labels are read.")
-        step = params.get("step")
-        return cls(params["hints"], output.crs, None if step in (None, "") else float(step),
+        step, hints = params.get("step"), params["hints"]
+        if isinstance(hints, os.PathLike):
+            hints = os.fspath(hints)
+        elif not isinstance(hints, str):  # rows: kept as plain numbers (a run's request is JSON)
+            hints = np.asarray(hints, float).reshape(-1, 4).tolist()
+        return cls(hints, output.crs, None if step in (None, "") else float(step),
                    params.get("grid_crs") or None)
 
 
@@ -131,11 +136,20 @@ def _result(info, fit: SheetFit, frame_crs, grid_crs: str, hints, options: Regis
     frame = _frame(info, fit, frame_crs, grid_crs)
     scan_px, map_xy = fit.gcps[:, :2], fit.gcps[:, 2:4]
     frame_px = np.column_stack((~frame.transform) * (map_xy[:, 0], map_xy[:, 1]))
-    model = fit_model(options.model or fit.model, scan_px, frame_px)
+    scale = _frame_per_scan(fit_model("affine", scan_px, frame_px), info)
+    kind, held_out = _model_by_check(options.model, fit, scan_px, frame_px, info)
+    fit = dataclasses.replace(fit, model=kind, held_out=held_out / scale,
+                              loo_px=float(np.sqrt(np.mean(np.sum((held_out / scale) ** 2, axis=1)))))
+    fit = dataclasses.replace(fit, verified=fit.sound and fit.loo_px <= options.tolerance_px, notes=[
+        f"{len(scan_px)} crossings of the printed grid found (step {fit.step:g}), covering {fit.spread:.0%} of the "
+        f"sheet; the {kind} model{'' if options.model else ', chosen by the check'}: each grid line predicted from "
+        f"the others is off by {fit.loo_px:.2f} scan px RMS; the lattice of whole lines holds {fit.contrast:.2f} "
+        f"times the ink of its lines moved by part of a step, and is within {fit.apart_px:.1f} px of the "
+        "crossings"] + fit.notes[1:])
+    model = fit_model(kind, scan_px, frame_px)
     residual = model.apply(scan_px) - frame_px
     gcps = [Gcp(tuple(map(float, s)), tuple(map(float, f)), tuple(map(float, m)), tuple(map(float, r)), 1.0, True)
             for s, f, m, r in zip(scan_px, frame_px, map_xy, residual)]
-    scale = _frame_per_scan(model, info)
     res = np.hypot(*residual.T)
     loo = model.loo_residuals(scan_px, frame_px)
     stats = Stats(n_keypoints_target=fit.nodes, n_keypoints_reference=0, n_matches=len(gcps), n_inliers=len(gcps),
@@ -155,6 +169,45 @@ def _result(info, fit: SheetFit, frame_crs, grid_crs: str, hints, options: Regis
                                                     "coverage": fit.spread, "crossings": len(gcps),
                                                     "lattice_contrast": fit.contrast,
                                                     "frame_px_per_scan_px": scale}})
+
+
+KINDS = (("affine", 0.0), ("polynomial-2", 0.5), ("polynomial-3", 0.8), ("tps", 0.5))  # the sheet's models, with
+# the share of the sheet the crossings must cover for each (a polynomial or a spline bends wildly beyond them)
+BETTER = 0.9  # a model after the affine is taken when its lines held out are this much closer
+
+
+def _model_by_check(asked: Optional[str], fit: SheetFit, scan_px, frame_px, info):
+    """(the model kind, each crossing's error in frame px predicted by it fitted without the crossing's grid
+    line): the one asked for, else the one the check finds best (:data:`KINDS`, :data:`BETTER`)."""
+    from ..estimation.models import MIN_POINTS
+
+    lines = fit.gcps[:, 4:6]
+    kinds = [asked] if asked else [k for k, cover in KINDS if fit.spread >= cover and len(scan_px) >= 2 * MIN_POINTS[k]]
+    best = None
+    for kind in kinds or ["affine"]:
+        errors = held_out_lines(kind, scan_px, frame_px, lines)
+        rms = float(np.sqrt(np.mean(np.sum(errors ** 2, axis=1))))
+        if best is None or rms < BETTER * best[2]:
+            best = (kind, errors, rms)
+    return best[0], best[1]
+
+
+def held_out_lines(kind: str, scan_px, frame_px, lines) -> np.ndarray:
+    """(n, 2) frame px: each crossing's error under the model ``kind`` (scan px -> frame px) fitted without its
+    grid line, the larger of its two lines' (``lines``: each crossing's grid x and y); infinite where too few
+    crossings are left."""
+    from ..estimation.models import MIN_POINTS, fit_model
+
+    errors = np.zeros((len(scan_px), 2))
+    for axis in (0, 1):
+        for value in np.unique(lines[:, axis]):
+            on = lines[:, axis] == value
+            if (~on).sum() <= MIN_POINTS[kind]:
+                return np.full((len(scan_px), 2), np.inf)
+            e = fit_model(kind, scan_px[~on], frame_px[~on]).apply(scan_px[on]) - frame_px[on]
+            worse = np.hypot(*e.T) > np.hypot(*errors[on].T)
+            errors[np.flatnonzero(on)[worse]] = e[worse]
+    return errors
 
 
 def _frame_per_scan(model, info) -> float:

@@ -53,10 +53,12 @@ class SheetFit:
     notes: List[str] = field(default_factory=list)
     held_out: Optional[np.ndarray] = None  # (n, 2) scan px: each crossing's error predicted without its grid line
     spread: float = 0.0  # share of the sheet the crossings cover
-    nodes: int = 0  # crossings the lattice puts on the sheet
+    nodes: int = 0  # crossings the lattice puts on the sheet where both their lines can be looked at
     apart_px: Optional[float] = None  # the largest distance between the crossings' model and the lattice's
     apart_limit_px: float = math.inf  # and how far they may be apart for a verified result
     contrast: float = 0.0  # the lattice's ink over its lines moved by part of a step (see lattice.contrast)
+    sound: bool = False  # enough crossings, spread over the sheet, on the lattice of whole lines: all the
+    # verdict asks but the lines held out (``verified`` adds them, with this model)
 
     def to_crs(self, px: np.ndarray) -> np.ndarray:
         """Scan px (n, 2) -> ``crs`` coordinates, through the model fitted on every crossing found."""
@@ -89,6 +91,7 @@ def fit_sheet(scan, hints: Sequence, crs: str, grid_crs: Optional[str] = None,
     from_crs = Transformer.from_crs(CRS.from_user_input(crs), CRS.from_user_input(grid_crs), always_xy=True)
     geographic = CRS.from_user_input(grid_crs).is_geographic
     steps = [step] if step else grid_steps(hints[:, 2:], DEGREE_STEPS if geographic else METRE_STEPS)
+    steps = [s for s in steps if s >= steps[0] / STEPS_SPAN]
     source = scan if isinstance(scan, LineSource) else LineSource.from_array(scan)
     shape = source.shape
     hint_xy = np.column_stack(to_crs.transform(hints[:, 2], hints[:, 3]))
@@ -134,11 +137,17 @@ def fit_sheet(scan, hints: Sequence, crs: str, grid_crs: Optional[str] = None,
              f"the lattice of whole lines holds {ink:.2f} times the ink of its lines moved by part of a step, and is "
              f"within {apart:.1f} px of the crossings' model"]
     limit = max(2 * tolerance_px, factor)
-    verified = len(found) >= MIN_FIT and loo <= tolerance_px and spread >= MIN_SPREAD and apart <= limit
-    inside = _inside(apply_poly(lattice.coef, np.column_stack(to_crs.transform(*nodes.T))), shape)
+    reachable = _inside(apply_poly(lattice.coef, np.column_stack(to_crs.transform(*nodes.T))), shape,
+                        0.45 * spacing + radius + 2)  # crossings whose two strips lie on the scan
+    share = len(found) / max(int(reachable.sum()), 1)
+    sound = len(found) >= MIN_FIT and spread >= MIN_SPREAD and apart <= limit and share >= MIN_SHARE
+    notes += [f"only {len(found)} of the {int(reachable.sum())} crossings the lattice puts on the sheet were found "
+              f"on printed lines ({MIN_SHARE:.0%} needed): the lattice may not be the printed grid"] \
+        if share < MIN_SHARE else []
+    verified = sound and loo <= tolerance_px
     monitor.report(1.0, "grid: the model")
-    return SheetFit(found, MODELS[order - 1][0], order, loo, verified, step, notes, held_out, spread, int(inside.sum()),
-                    apart, limit, ink)
+    return SheetFit(found, MODELS[order - 1][0], order, loo, verified, step, notes, held_out, spread,
+                    int(reachable.sum()), apart, limit, ink, sound)
 
 
 def _inside(px, shape, margin: float = 0.0) -> np.ndarray:
@@ -148,6 +157,7 @@ def _inside(px, shape, margin: float = 0.0) -> np.ndarray:
 
 MIN_CONTRAST = 1.3  # the lattice's ink over its lines moved by part of a step: below, no grid of that step is there
 MIN_SPREAD = 0.25  # share of the sheet the crossings must cover for a verified result
+MIN_SHARE = 0.5  # of the crossings the lattice puts on the sheet, those found on printed lines for a verified result
 LOCAL_SHARE = 0.04  # of a step: how far from the lattice's place a crossing is looked for
 FAINT = 0.3  # of the median crossing's ink: fainter crossings are noise (off the paper, a gap in the lines)
 
@@ -230,6 +240,8 @@ def _lattice(source, works, forward, backward, from_crs, to_crs, step):
 
 
 MIN_STEP_PX = 12.0  # a printed grid's crossings are at least this far apart on a scan
+STEPS_SPAN = 10  # the steps the hints fit that are tried: down to a tenth of the largest (hints on crossings ten
+# steps apart at most)
 
 
 def _nodes(forward, shape, from_crs, step):

@@ -1,0 +1,206 @@
+"""Scanned sheets georeferenced by their own printed grid (issue 56): ``hamta bench --methods auto --families
+scanned``.
+
+Three kinds of units, each run as a user runs it (:func:`hamta.core.run`, method 'grid', no reference):
+
+- real sheets of ``../shared/data/scanned`` (a 1907 map with a faint 1-degree graticule, two NOAA charts, one
+  turned 45 degrees), read as pixels only: 2 or 3 hints drawn from the sheet's own truth (crossings of the
+  printed grid), placed within ``REAL_NOISE_PX`` of them, as a person would click. A result counts as right
+  when the model's RMS over every truth point is within 2 scan px, or the truth's own accuracy where that is
+  coarser (:data:`REAL`);
+- the synthetic family (:mod:`hamta.bench.sheets`: grids and graticules in several CRSs and styles, turned,
+  warped, yellowed, folded, a corner missing, JPEG; one sheet without a grid), exact truth, right within 2 px,
+  and the same sheets with one hint typed a step off (must be refused or right);
+- sizes: a 5000 x 3500 px and a 20000 x 14000 px scan (tiled GeoTIFFs written tile by tile), every output
+  written, timed, with the process's peak memory (goals: 15 s and 1.5 GB).
+
+A verified result beyond its threshold is a confident wrong answer.
+"""
+from __future__ import annotations
+
+import csv
+import os
+import time
+
+import numpy as np
+
+from ..study import Study
+
+FOLDER = "scanned"
+REAL = {  # sheet: (file, the sheet's CRS, the printed coordinates' CRS, step, right within px)
+    "nsw1907": ("nsw1907/nsw1907.jpg", "EPSG:4326", "EPSG:4326", 1.0, 2.0),
+    "noaa16004": ("noaa16004/16004_1.KAP", "EPSG:3395", "EPSG:4269", 1.0, 2.0),
+    "noaa14771": ("noaa14771/14771_1.KAP", "EPSG:3395", "EPSG:4269", 1 / 60, 5.0),
+}
+REAL_NOISE_PX = 3.0
+SIZES = ((5000, 3500), (20000, 14000))
+SEEDS = 5
+
+
+def available(data_dir: str) -> bool:
+    return all(os.path.exists(os.path.join(data_dir, FOLDER, v[0])) for v in REAL.values())
+
+
+def units(config):
+    from ..sheets import SPECS
+
+    seeds = range(SEEDS if not config.quick else 1)
+    out = [("real", name, k, s) for name in REAL for k in (2, 3) for s in seeds]
+    out += [("synthetic", spec.name, k, s) for spec in SPECS for k in (2, 3) for s in seeds]
+    out += [("one-step-off", spec.name, 3, s) for spec in SPECS if spec.grid for s in seeds]
+    return out + [("size", f"{w}x{h}", 2, 0) for w, h in (SIZES if not config.quick else SIZES[:1])]
+
+
+def run_unit(unit, config) -> list:
+    from ..memory import PeakRss
+
+    kind, name, k, seed = unit
+    folder = os.path.join(config.out_dir, "cases", "scanned", f"{kind}-{name}-{k}-{seed}")  # one per unit: the
+    os.makedirs(folder, exist_ok=True)  # pool runs units side by side
+    row = {"kind": kind, "sheet": name, "hints": k, "seed": seed}
+    if kind == "real":
+        path, crs, grid_crs, step, right_px = REAL[name]
+        truth = _truth(os.path.join(config.data_dir, FOLDER, name, "truth.csv"))
+        hints = _hints(truth, step, k, seed)
+        to_px = _truth_error(truth, crs, grid_crs)
+        path = os.path.join(config.data_dir, FOLDER, path)
+    elif kind == "size":
+        from ..sheets import large_sheet
+
+        w, h = (int(v) for v in name.split("x"))
+        sheet = large_sheet(os.path.join(folder, f"large_{name}.tif"), w, h)
+        path, crs, grid_crs, hints, right_px = sheet.path, sheet.crs, sheet.crs, sheet.hints(k), 2.0
+        nodes = _nodes_of(sheet, w, h)
+        to_px = _synthetic_error(nodes, sheet.to_scan(nodes), crs, grid_crs)
+    else:
+        from ..sheets import SPECS, render
+
+        spec = next(s for s in SPECS if s.name == name)
+        sheet = render(spec, folder)
+        path, crs, grid_crs, right_px = sheet.path, spec.crs, spec.grid_crs, 2.0
+        hints = sheet.hints(k, seed) if spec.grid else np.array([[300.0, 300.0, 500000.0, 5540000.0],
+                                                                   [500.0, 310.0, 501000.0, 5540000.0]])
+        if kind == "one-step-off":
+            hints[-1, 2] += spec.step
+        nodes = sheet.nodes()
+        to_px = _synthetic_error(nodes, sheet.to_scan(nodes), crs, grid_crs) if spec.grid else None
+    row["right_px"] = right_px
+    with PeakRss() as peak:
+        row.update(_run(path, crs, grid_crs, hints, to_px, folder if kind == "size" else None))
+    row["peak_mb"] = peak.peak
+    row["confident_wrong"] = row["verdict"] == "verified" and (row["rms_px"] is None or row["rms_px"] > right_px)
+    return [row]
+
+
+def _run(path, crs, grid_crs, hints, to_px, out) -> dict:
+    import shutil
+
+    from ...core import run
+    from ...core.errors import HamtaError, UnverifiedResult
+    from ...core.options import OutputOptions
+    from ...core.outputs import OutputPaths
+
+    paths = None
+    if out is not None:
+        out = os.path.join(out, "outputs")
+        shutil.rmtree(out, ignore_errors=True)
+        paths = OutputPaths.in_folder(out)
+    t0 = time.perf_counter()
+    try:
+        result, _ = run(path, None, paths, method="grid", params={"hints": hints, "grid_crs": grid_crs},
+                        output=OutputOptions(crs=crs))
+    except UnverifiedResult as exc:
+        result = exc.result
+    except HamtaError as exc:
+        return {"verdict": "refused", "why": str(exc)[:160], "rms_px": None, "time_s": time.perf_counter() - t0,
+                "crossings": 0, "model": None, "step": None}
+    elapsed = time.perf_counter() - t0
+    rms = None if to_px is None else to_px(result)
+    return {"verdict": result.verification.verdict, "why": "; ".join(result.verification.reasons)[:160],
+            "rms_px": rms, "time_s": elapsed, "crossings": len(result.gcps), "model": result.model.kind,
+            "step": result.params["step"]}
+
+
+def _truth(path) -> np.ndarray:
+    """Rows of scan x, y, lon, lat."""
+    with open(path, newline="") as f:
+        return np.array([[float(r["pixel_x"]), float(r["pixel_y"]), float(r["lon"]), float(r["lat"])]
+                         for r in csv.DictReader(f)])
+
+
+def _hints(truth, step, k, seed) -> np.ndarray:
+    """``k`` truth points on crossings of the printed grid, placed within :data:`REAL_NOISE_PX`."""
+    on = np.all(np.abs(truth[:, 2:] / step - np.round(truth[:, 2:] / step)) < 0.01, axis=1)
+    crossings = truth[on].copy()
+    crossings[:, 2:] = np.round(crossings[:, 2:] / step) * step
+    rng = np.random.default_rng(seed)
+    pick = crossings[rng.choice(len(crossings), k, replace=False)].copy()
+    pick[:, :2] += rng.uniform(-REAL_NOISE_PX, REAL_NOISE_PX, (k, 2))
+    return pick
+
+
+def _truth_error(truth, crs, grid_crs):
+    """result -> RMS (scan px) of every truth point from where the model puts its coordinates."""
+    return _synthetic_error(truth[:, 2:], truth[:, :2], crs, grid_crs)
+
+
+def _synthetic_error(grid_xy, scan_px, crs, grid_crs):
+    from pyproj import Transformer
+
+    xy = np.column_stack(Transformer.from_crs(grid_crs, crs, always_xy=True).transform(*np.asarray(grid_xy).T))
+
+    def error(result) -> float:
+        from ...core.estimation.inverse import invert_model
+
+        frame_px = np.column_stack((~result.reference.transform) * (xy[:, 0], xy[:, 1]))
+        got, _ = invert_model(result.model, frame_px, (result.target.width, result.target.height))
+        return float(np.sqrt(np.mean(np.sum((got - scan_px) ** 2, axis=1))))
+
+    return error
+
+
+def _nodes_of(sheet, width, height) -> np.ndarray:
+    inverse = np.linalg.inv(np.vstack([sheet.matrix, [0, 0, 1]]))
+    corners = np.array([[0, 0, 1], [width, 0, 1], [0, height, 1], [width, height, 1]]) @ inverse[:2].T
+    lo, hi = np.ceil(corners.min(axis=0) / 1000), np.floor(corners.max(axis=0) / 1000)
+    gx, gy = np.meshgrid(np.arange(lo[0], hi[0] + 1) * 1000, np.arange(lo[1], hi[1] + 1) * 1000)
+    nodes = np.column_stack([gx.ravel(), gy.ravel()])
+    px = sheet.to_scan(nodes)
+    inside = (px[:, 0] > 50) & (px[:, 1] > 50) & (px[:, 0] < width - 50) & (px[:, 1] < height - 50)
+    return nodes[inside]
+
+
+def tables(rows) -> list:
+    out = []
+    for kind, title in (("real", "real sheets, 2 or 3 hints from the truth placed within 3 px"),
+                        ("synthetic", "synthetic sheets (hamta.bench.sheets), 2 or 3 hints within 3 px"),
+                        ("one-step-off", "synthetic sheets, 3 hints, one typed a step off: refused or right")):
+        body = []
+        for sheet in sorted({r["sheet"] for r in rows if r["kind"] == kind}):
+            for k in sorted({r["hints"] for r in rows if r["kind"] == kind and r["sheet"] == sheet}):
+                mine = [r for r in rows if r["kind"] == kind and r["sheet"] == sheet and r["hints"] == k]
+                right = [r for r in mine if r["verdict"] == "verified" and not r["confident_wrong"]]
+                rms = [r["rms_px"] for r in right]
+                body.append([sheet, k, len(mine), len(right), sum(r["confident_wrong"] for r in mine),
+                             sum(r["verdict"] == "refused" for r in mine),
+                             "–" if not rms else f"{np.median(rms):.2f}", "–" if not rms else f"{max(rms):.2f}",
+                             f"{np.median([r['time_s'] for r in mine]):.1f}",
+                             f"{max(r['peak_mb'] for r in mine):.0f}"])
+        if body:
+            out.append({"title": f"scanned: {title}", "rows": body,
+                        "columns": ["sheet", "hints", "runs", "verified right", "confident wrong", "refused",
+                                    "median RMS px", "max RMS px", "median s", "max peak MB"],
+                        "note": "RMS: every truth point (real) or crossing (synthetic) from where the model puts "
+                                "its coordinates, scan px. Right within 2 px (5 px on noaa14771, the truth's own "
+                                "accuracy)."})
+    sizes = [r for r in rows if r["kind"] == "size"]
+    if sizes:
+        out.append({"title": "scanned: size (a 1 km grid on a tiled GeoTIFF, every output written)",
+                    "columns": ["scan px", "verdict", "crossings", "RMS px", "time s", "peak MB"],
+                    "rows": [[r["sheet"], r["verdict"], r["crossings"], "–" if r["rms_px"] is None else
+                              f"{r['rms_px']:.2f}", f"{r['time_s']:.1f}", f"{r['peak_mb']:.0f}"] for r in sizes],
+                    "note": "Goals: 15 s for 5000 x 3500 px, 1.5 GB for 20000 px."})
+    return out
+
+
+STUDY = Study("scanned", ("auto",), ("scanned",), units, run_unit, tables)
