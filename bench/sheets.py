@@ -22,7 +22,8 @@ class SheetSpec:
     (grid_crs units) and ``size_px`` (width, height) at ``pixel_m`` (crs units per print px) place it. ``style``
     'lines' or 'crosses'; ``ink`` the grid's grey (0 black, 235 the paper); ``width_px`` its width. Scan:
     ``angle_deg``, ``warp_px`` (the paper's smooth distortion, at most), ``yellow``, ``fold``, ``corner`` (a
-    missing corner), ``jpeg`` quality, ``noise`` (grey levels), ``grid`` False for a sheet without one."""
+    missing corner), ``jpeg`` quality, ``noise`` (grey levels), ``grid`` False for a sheet without one,
+    ``labels`` for a margin with the coordinates printed (:func:`_margin`)."""
 
     name: str
     crs: str
@@ -42,6 +43,7 @@ class SheetSpec:
     jpeg: int = 85
     noise: float = 4.0
     grid: bool = True
+    labels: bool = False
     seed: int = 0
     content: dict = field(default_factory=dict)
 
@@ -60,6 +62,10 @@ SPECS = (
     SheetSpec("turned-sheet-faint", "EPSG:32618", "EPSG:32618", 1000.0, (500000.0, 4400000.0), ink=165,
               width_px=1.0, angle_deg=91.0, warp_px=1.5, yellow=True, noise=6.0, seed=5),
     SheetSpec("no-grid", "EPSG:32633", "EPSG:32633", 1000.0, (500000.0, 5540000.0), grid=False, seed=6),
+    SheetSpec("utm-km-labelled", "EPSG:32633", "EPSG:32633", 1000.0, (480000.0, 5570000.0), labels=True,
+              angle_deg=0.8, warp_px=1.5, yellow=True, seed=7),
+    SheetSpec("graticule-labelled", "EPSG:32633", "EPSG:4326", 1 / 60, (14.6, 50.6), size_px=(1000, 800),
+              pixel_m=6.0, labels=True, angle_deg=-1.2, jpeg=75, seed=8),
 )
 
 
@@ -121,14 +127,92 @@ def render(spec: SheetSpec, folder: str, background=None) -> Sheet:
         mx, my = to_crs.transform(grid_xy[:, 0], grid_xy[:, 1])
         return np.column_stack([(np.asarray(mx) - x0) / spec.pixel_m, (y1 - np.asarray(my)) / spec.pixel_m])
 
+    m = MARGIN_PX if spec.labels else 0
+    if m:  # the map face inside a margin that carries the labels
+        face = to_canvas
+        w, h = w + 2 * m, h + 2 * m
+
+        def to_canvas(grid_xy):
+            return face(grid_xy) + m
+
     canvas = _content(background, (h, w), rng)
     if spec.grid:
         _draw_grid(canvas, spec, to_canvas)
+    if m:
+        _margin(canvas, spec, to_canvas, m)
     scan, canvas_to_scan = _scan(canvas, spec, rng)
     os.makedirs(folder, exist_ok=True)
     path = os.path.join(folder, f"{spec.name}.jpg")
     cv2.imwrite(path, scan, [cv2.IMWRITE_JPEG_QUALITY, spec.jpeg])
     return Sheet(path, spec, to_canvas, canvas_to_scan)
+
+
+MARGIN_PX = 110  # a labelled sheet's margin around its map face
+
+
+def _margin(canvas, spec: SheetSpec, to_canvas, m: int) -> None:
+    """Paper around the map face, its neatline, and each grid line's tick and label where it meets the neatline:
+    degrees and minutes (``15°10'``), or metres (in full on the first line of an edge, else the kilometres' two
+    last digits, as topographic sheets print them)."""
+    import cv2
+
+    h, w = canvas.shape[:2]
+    face = canvas[m:h - m, m:w - m].copy()
+    canvas[:] = 238
+    canvas[m:h - m, m:w - m] = face
+    cv2.rectangle(canvas, (m, m), (w - m, h - m), (30, 30, 30), 2)
+    g = np.asarray(spec.centre, float)
+    base = np.round(g / spec.step) * spec.step
+    t = np.linspace(-60, 60, 4801)
+    for axis, edges in ((0, (("top", m), ("bottom", h - m))), (1, (("left", m), ("right", w - m)))):
+        for side, edge in edges:
+            first = True
+            for k in range(-60, 61):
+                value = base[axis] + k * spec.step
+                pts = np.empty((len(t), 2))
+                pts[:, axis], pts[:, 1 - axis] = value, base[1 - axis] + t * spec.step
+                px = to_canvas(pts)
+                across = px[:, 1 - axis]  # y along a meridian (axis 0), x along a parallel
+                cross = np.flatnonzero(np.diff(np.sign(across - edge)) != 0)
+                if not len(cross):
+                    continue
+                i = cross[0]
+                f = (edge - across[i]) / (across[i + 1] - across[i])
+                at = px[i, axis] + f * (px[i + 1, axis] - px[i, axis])  # along the edge
+                if not (m + 30 < at < (w if axis == 0 else h) - m - 30):
+                    continue
+                _label(canvas, spec, value, side, at, edge, first)
+                first = False
+
+
+def _label(canvas, spec: SheetSpec, value: float, side: str, at: float, edge: float, full: bool) -> None:
+    import cv2
+
+    font, scale, thick = cv2.FONT_HERSHEY_SIMPLEX, 0.8, 2
+    geographic = spec.grid_crs == "EPSG:4326"
+    if geographic:
+        deg = int(abs(value) + 1e-9)
+        minutes = int(round((abs(value) - deg) * 60))
+        parts = [f"{deg}", "deg", f"{minutes:02d}", "min"]
+    else:
+        parts = [f"{int(value)}" if full else f"{int(value / 1000) % 100:02d}"]
+    widths = [cv2.getTextSize(p, font, scale, thick)[0][0] if p not in ("deg", "min") else 9 for p in parts]
+    height = cv2.getTextSize("0", font, scale, thick)[0][1]
+    total = sum(widths)
+    if side in ("top", "bottom"):
+        x, y = at - total / 2, edge - 14 if side == "top" else edge + 14 + height
+        cv2.line(canvas, (int(at), int(edge)), (int(at), int(edge - 8 if side == "top" else edge + 8)), (30,) * 3, 2)
+    else:
+        x, y = (edge - 10 - total, at + height / 2) if side == "left" else (edge + 10, at + height / 2)
+        cv2.line(canvas, (int(edge), int(at)), (int(edge - 8 if side == "left" else edge + 8), int(at)), (30,) * 3, 2)
+    for part, width in zip(parts, widths):
+        if part == "deg":
+            cv2.circle(canvas, (int(x + 4), int(y - height + 3)), 3, (20,) * 3, 1, cv2.LINE_AA)
+        elif part == "min":
+            cv2.line(canvas, (int(x + 3), int(y - height)), (int(x + 1), int(y - height + 7)), (20,) * 3, 2)
+        else:
+            cv2.putText(canvas, part, (int(x), int(y)), font, scale, (20,) * 3, thick, cv2.LINE_AA)
+        x += width
 
 
 def _content(background, shape, rng) -> np.ndarray:

@@ -274,12 +274,14 @@ def build_parser() -> argparse.ArgumentParser:
                                                       "or WMS layer source, or a GDAL string (/vsicurl/..., WMTS:..., "
                                                       "WCS:..., a GDAL WMS XML file); see --extent. Without it, a "
                                                       "scanned sheet is georeferenced by its own printed grid: give "
-                                                      "--crs (the sheet's) and --gcps")
+                                                      "--crs (the sheet's), and --gcps where its labels cannot be "
+                                                      "read")
     r.add_argument("--gcps", default=None, metavar="HINTS.points",
                    help="without --reference: two or three crossings of the sheet's printed grid placed roughly with "
                         "their coordinates, as the QGIS Georeferencer saves them (mapX, mapY: the printed coordinates, "
                         "in degrees or in the grid's metres; --param step=... and --param grid_crs=... where they do "
-                        "not tell the grid)")
+                        "not tell the grid); without it, the labels printed in the sheet's margins are read "
+                        "(Tesseract)")
     r.add_argument("--target", required=True, help="raster to georeference")
     r.add_argument("--out", required=True, help="output folder (created if missing)")
     r.add_argument("--method", default="auto",

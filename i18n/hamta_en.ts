@@ -69,7 +69,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="252"/>
+        <location filename="../plugin/autogeoref.py" line="253"/>
         <source>Auto-georeference</source>
         <translation type="unfinished"></translation>
     </message>
@@ -119,22 +119,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="231"/>
+        <location filename="../plugin/autogeoref.py" line="232"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="239"/>
+        <location filename="../plugin/autogeoref.py" line="240"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="241"/>
+        <location filename="../plugin/autogeoref.py" line="242"/>
         <source>Choose an output folder.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="244"/>
+        <location filename="../plugin/autogeoref.py" line="245"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -289,23 +289,23 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="191"/>
-        <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/autogeoref.py" line="193"/>
+        <location filename="../plugin/autogeoref.py" line="194"/>
         <source>Hints (.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="234"/>
+        <location filename="../plugin/autogeoref.py" line="235"/>
         <source>Choose the CRS of the sheet, or a reference layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="236"/>
-        <source>Choose the hints: two or three crossings placed in the Georeferencer with their coordinates, saved as GCP points (.points); or choose a reference layer.</source>
+        <location filename="../plugin/autogeoref.py" line="191"/>
+        <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points; empty: the labels printed in the sheet&apos;s margins are read.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="237"/>
+        <source>The hints file does not exist: choose the GCP points (.points) saved in the Georeferencer, or leave it empty to have the sheet&apos;s printed labels read.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -440,11 +440,6 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/grid_algorithm.py" line="59"/>
-        <source>Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, with their coordinates as printed (degrees, or metres of the grid), saved as GCP points</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/grid_algorithm.py" line="63"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
@@ -472,6 +467,11 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/grid_algorithm.py" line="85"/>
         <source>Choose the CRS of the sheet.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="59"/>
+        <source>Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, with their coordinates as printed (degrees, or metres of the grid), saved as GCP points (empty: the labels printed in the sheet&apos;s margins are read, with Tesseract)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -1880,7 +1880,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     </message>
     <message>
         <location filename="../processing/catalogue.py" line="33"/>
-        <source>Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as printed (degrees, or metres of the national grid) and save the GCP points (.points); choose the sheet&apos;s CRS. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each crossing becomes a GCP. The model (affine, or a polynomial where the projection bends the lines) is checked by predicting each grid line from the others: a result is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, saying why.</source>
+        <source>Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Choose the sheet&apos;s CRS. The coordinates printed in its margins are read (Tesseract); where they cannot be, place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as printed (degrees, or metres of the national grid) and save the GCP points (.points) as hints. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each crossing becomes a GCP. The model (affine, a polynomial where the projection bends the lines, a thin plate spline where the paper is warped) is checked by predicting each grid line from the others: a result is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, saying why.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -94,7 +94,7 @@
         <translation>{}، رستر «{}» را باز کنید (پرونده ◂ باز کردن رستر…)، سپس پرونده ◂ بارگذاری نقاط کنترل… و مسیر پروندهٔ نقاط کنترل را که اکنون در حافظهٔ موقت است بچسبانید: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="252"/>
+        <location filename="../plugin/autogeoref.py" line="253"/>
         <source>Auto-georeference</source>
         <translation>زمین‌مرجع‌سازی خودکار</translation>
     </message>
@@ -154,22 +154,22 @@
         <translation>اجرا</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="231"/>
+        <location filename="../plugin/autogeoref.py" line="232"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation>رستری را که باید زمین‌مرجع شود انتخاب کنید (نخست آن را به پروژه بیفزایید).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="239"/>
+        <location filename="../plugin/autogeoref.py" line="240"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation>لایهٔ مرجعی جز هدف انتخاب کنید: یک نقشهٔ پایه یا رستری زمین‌مرجع.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="241"/>
+        <location filename="../plugin/autogeoref.py" line="242"/>
         <source>Choose an output folder.</source>
         <translation>یک پوشهٔ خروجی انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="244"/>
+        <location filename="../plugin/autogeoref.py" line="245"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation>«{}» زمین‌مرجع ندارد: محدودهٔ جست‌وجو را روشن کنید (به‌طور پیش‌فرض محدودهٔ بوم نقشه) تا همتا بداند در «{}» کجا را بجوید.</translation>
     </message>
@@ -366,22 +366,32 @@
     <message>
         <location filename="../plugin/autogeoref.py" line="191"/>
         <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points.</source>
-        <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز گذاشته شده‌اند، با مختصاتی که چاپ شده، ذخیره‌شده به‌صورت نقاط کنترل.</translation>
+        <translation type="obsolete">دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز گذاشته شده‌اند، با مختصاتی که چاپ شده، ذخیره‌شده به‌صورت نقاط کنترل.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="193"/>
+        <location filename="../plugin/autogeoref.py" line="194"/>
         <source>Hints (.points)</source>
         <translation>راهنماها (.points)</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="234"/>
+        <location filename="../plugin/autogeoref.py" line="235"/>
         <source>Choose the CRS of the sheet, or a reference layer.</source>
         <translation>CRS برگه یا یک لایهٔ مرجع را انتخاب کنید.</translation>
     </message>
     <message>
         <location filename="../plugin/autogeoref.py" line="236"/>
         <source>Choose the hints: two or three crossings placed in the Georeferencer with their coordinates, saved as GCP points (.points); or choose a reference layer.</source>
-        <translation>راهنماها را انتخاب کنید: دو یا سه تقاطع که در زمین‌مرجع‌ساز با مختصاتشان گذاشته و به‌صورت نقاط کنترل (.points) ذخیره شده‌اند؛ یا یک لایهٔ مرجع انتخاب کنید.</translation>
+        <translation type="obsolete">راهنماها را انتخاب کنید: دو یا سه تقاطع که در زمین‌مرجع‌ساز با مختصاتشان گذاشته و به‌صورت نقاط کنترل (.points) ذخیره شده‌اند؛ یا یک لایهٔ مرجع انتخاب کنید.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="191"/>
+        <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points; empty: the labels printed in the sheet&apos;s margins are read.</source>
+        <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز با مختصاتی که چاپ شده گذاشته و به‌صورت نقاط کنترل ذخیره شده‌اند؛ خالی: برچسب‌های چاپ‌شده در حاشیهٔ برگه خوانده می‌شوند.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="237"/>
+        <source>The hints file does not exist: choose the GCP points (.points) saved in the Georeferencer, or leave it empty to have the sheet&apos;s printed labels read.</source>
+        <translation>پروندهٔ راهنماها وجود ندارد: نقاط کنترل (.points) ذخیره‌شده در زمین‌مرجع‌ساز را انتخاب کنید، یا خالی بگذارید تا برچسب‌های چاپ‌شدهٔ برگه خوانده شوند.</translation>
     </message>
 </context>
 <context>
@@ -519,7 +529,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/grid_algorithm.py" line="59"/>
         <source>Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, with their coordinates as printed (degrees, or metres of the grid), saved as GCP points</source>
-        <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز QGIS گذاشته شده‌اند، با مختصاتی که چاپ شده (درجه، یا متر شبکه)، ذخیره‌شده به‌صورت نقاط کنترل</translation>
+        <translation type="obsolete">دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز QGIS گذاشته شده‌اند، با مختصاتی که چاپ شده (درجه، یا متر شبکه)، ذخیره‌شده به‌صورت نقاط کنترل</translation>
     </message>
     <message>
         <location filename="../processing/grid_algorithm.py" line="63"/>
@@ -550,6 +560,11 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <location filename="../processing/grid_algorithm.py" line="85"/>
         <source>Choose the CRS of the sheet.</source>
         <translation>CRS برگه را انتخاب کنید.</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="59"/>
+        <source>Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, with their coordinates as printed (degrees, or metres of the grid), saved as GCP points (empty: the labels printed in the sheet&apos;s margins are read, with Tesseract)</source>
+        <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز QGIS گذاشته شده‌اند، با مختصاتی که چاپ شده (درجه، یا متر شبکه)، ذخیره‌شده به‌صورت نقاط کنترل (خالی: برچسب‌های چاپ‌شده در حاشیهٔ برگه با Tesseract خوانده می‌شوند)</translation>
     </message>
 </context>
 <context>
@@ -1963,7 +1978,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/catalogue.py" line="33"/>
         <source>Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as printed (degrees, or metres of the national grid) and save the GCP points (.points); choose the sheet&apos;s CRS. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each crossing becomes a GCP. The model (affine, or a polynomial where the projection bends the lines) is checked by predicting each grid line from the others: a result is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, saying why.</source>
-        <translation>برگهٔ نقشهٔ اسکن‌شده را با شبکه یا شبکهٔ جغرافیایی چاپ‌شده روی آن، بدون لایهٔ مرجع، زمین‌مرجع می‌کند. دو یا سه تقاطع خطوط چاپ‌شده را تقریبی در زمین‌مرجع‌ساز QGIS بگذارید، مختصاتشان را همان‌طور که چاپ شده بنویسید (درجه، یا متر شبکهٔ ملی) و نقاط کنترل (.points) را ذخیره کنید؛ CRS برگه را انتخاب کنید. همتا ابتدا کل شبکهٔ چاپ‌شده و سپس هر تقاطع برگه را با دقت کسری از پیکسل پیدا می‌کند؛ هر تقاطع یک نقطهٔ کنترل می‌شود. مدل (آفین، یا چندجمله‌ای جایی که تصویر نقشه خطوط را خم می‌کند) با پیش‌بینی هر خط شبکه از روی بقیه سنجیده می‌شود: نتیجه فقط وقتی تأیید می‌شود که این سنجش در دقت خواسته‌شده، به پیکسل اسکن، باشد. برگه‌ای که شبکه‌اش پیدا نشود، با گفتن دلیل، رد می‌شود.</translation>
+        <translation type="obsolete">برگهٔ نقشهٔ اسکن‌شده را با شبکه یا شبکهٔ جغرافیایی چاپ‌شده روی آن، بدون لایهٔ مرجع، زمین‌مرجع می‌کند. دو یا سه تقاطع خطوط چاپ‌شده را تقریبی در زمین‌مرجع‌ساز QGIS بگذارید، مختصاتشان را همان‌طور که چاپ شده بنویسید (درجه، یا متر شبکهٔ ملی) و نقاط کنترل (.points) را ذخیره کنید؛ CRS برگه را انتخاب کنید. همتا ابتدا کل شبکهٔ چاپ‌شده و سپس هر تقاطع برگه را با دقت کسری از پیکسل پیدا می‌کند؛ هر تقاطع یک نقطهٔ کنترل می‌شود. مدل (آفین، یا چندجمله‌ای جایی که تصویر نقشه خطوط را خم می‌کند) با پیش‌بینی هر خط شبکه از روی بقیه سنجیده می‌شود: نتیجه فقط وقتی تأیید می‌شود که این سنجش در دقت خواسته‌شده، به پیکسل اسکن، باشد. برگه‌ای که شبکه‌اش پیدا نشود، با گفتن دلیل، رد می‌شود.</translation>
+    </message>
+    <message>
+        <location filename="../processing/catalogue.py" line="33"/>
+        <source>Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Choose the sheet&apos;s CRS. The coordinates printed in its margins are read (Tesseract); where they cannot be, place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as printed (degrees, or metres of the national grid) and save the GCP points (.points) as hints. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each crossing becomes a GCP. The model (affine, a polynomial where the projection bends the lines, a thin plate spline where the paper is warped) is checked by predicting each grid line from the others: a result is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, saying why.</source>
+        <translation>برگهٔ نقشهٔ اسکن‌شده را با شبکه یا شبکهٔ جغرافیایی چاپ‌شده روی آن، بدون لایهٔ مرجع، زمین‌مرجع می‌کند. CRS برگه را انتخاب کنید. مختصات چاپ‌شده در حاشیهٔ آن خوانده می‌شود (Tesseract)؛ جایی که خوانده نشود، دو یا سه تقاطع خطوط چاپ‌شده را تقریبی در زمین‌مرجع‌ساز QGIS بگذارید، مختصاتشان را همان‌طور که چاپ شده بنویسید (درجه، یا متر شبکهٔ ملی) و نقاط کنترل (.points) را به‌عنوان راهنما ذخیره کنید. همتا ابتدا کل شبکهٔ چاپ‌شده و سپس هر تقاطع برگه را با دقت کسری از پیکسل پیدا می‌کند؛ هر تقاطع یک نقطهٔ کنترل می‌شود. مدل (آفین، چندجمله‌ای جایی که تصویر نقشه خطوط را خم می‌کند، یا اسپلاین صفحهٔ نازک جایی که کاغذ تاب برداشته) با پیش‌بینی هر خط شبکه از روی بقیه سنجیده می‌شود: نتیجه فقط وقتی تأیید می‌شود که این سنجش در دقت خواسته‌شده، به پیکسل اسکن، باشد. برگه‌ای که شبکه‌اش پیدا نشود، با گفتن دلیل، رد می‌شود.</translation>
     </message>
 </context>
 </TS>

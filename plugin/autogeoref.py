@@ -189,7 +189,8 @@ class AutoGeoreferenceDialog(QDialog):
         self.hints = QgsFileWidget(self.sheet)
         self.hints.setFilter(tr("GCP points (*.points)"))
         self.hints.setToolTip(tr("Two or three crossings of the printed lines placed roughly in the Georeferencer "
-                                 "with their coordinates as printed, saved as GCP points."))
+                                 "with their coordinates as printed, saved as GCP points; empty: the labels printed "
+                                 "in the sheet's margins are read."))
         form.addRow(tr("Hints (.points)"), self.hints)
         return self.sheet
 
@@ -232,9 +233,9 @@ class AutoGeoreferenceDialog(QDialog):
         if reference is None:
             if not self.sheet_crs.crs().isValid():
                 return tr("Choose the CRS of the sheet, or a reference layer.")
-            if not os.path.isfile(self.hints.filePath()):
-                return tr("Choose the hints: two or three crossings placed in the Georeferencer with their "
-                          "coordinates, saved as GCP points (.points); or choose a reference layer.")
+            if self.hints.filePath() and not os.path.isfile(self.hints.filePath()):
+                return tr("The hints file does not exist: choose the GCP points (.points) saved in the Georeferencer, "
+                          "or leave it empty to have the sheet's printed labels read.")
         elif reference is target:
             return tr("Choose a reference layer other than the target: a basemap or a georeferenced raster.")
         if not self.folder.filePath().strip():
@@ -265,6 +266,6 @@ class AutoGeoreferenceDialog(QDialog):
         grid = None
         if reference is None:
             crs = self.sheet_crs.crs()
-            grid = {"hints": self.hints.filePath(), "crs": crs.authid() or crs.toWkt()}
+            grid = {"hints": self.hints.filePath() or None, "crs": crs.authid() or crs.toWkt()}
         return Job(target.source(), target.name(), reference, options.extent, self.folder.filePath().strip(), options,
                    self.keep.isChecked(), grid)

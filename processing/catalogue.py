@@ -34,14 +34,15 @@ GRID_ALGORITHM = Entry(
     "georeferencebygrid", QT_TRANSLATE_NOOP("RegisterAlgorithm", "Georeference a scanned map by its grid"),
     QT_TRANSLATE_NOOP(
         "RegisterAlgorithm",
-        "Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Place "
-        "two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as "
-        "printed (degrees, or metres of the national grid) and save the GCP points (.points); choose the sheet's "
-        "CRS. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a "
-        "pixel; each crossing becomes a GCP. The model (affine, or a polynomial where the projection bends the "
-        "lines) is checked by predicting each grid line from the others: a result is verified only when that "
-        "check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, "
-        "saying why."))
+        "Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. "
+        "Choose the sheet's CRS. The coordinates printed in its margins are read (Tesseract); where they cannot be, "
+        "place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates "
+        "as printed (degrees, or metres of the national grid) and save the GCP points (.points) as hints. Hamta "
+        "finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each "
+        "crossing becomes a GCP. The model (affine, a polynomial where the projection bends the lines, a thin "
+        "plate spline where the paper is warped) is checked by predicting each grid line from the others: a result "
+        "is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid "
+        "cannot be found is refused, saying why."))
 
 
 def method_entries() -> Tuple[Entry, ...]:

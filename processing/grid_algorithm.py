@@ -55,10 +55,10 @@ class GridAlgorithm(RegisterAlgorithm):
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Scanned map (to georeference)")))
         self.addParameter(QgsProcessingParameterCrs(self.SHEET_CRS, self.tr("CRS of the sheet (its projection)")))
         hints = QgsProcessingParameterFile(self.HINTS, self.tr("Hints: crossings with their coordinates (.points)"),
-                                           extension="points")
+                                           extension="points", optional=True)
         hints.setHelp(self.tr("Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, "
                               "with their coordinates as printed (degrees, or metres of the grid), saved as GCP "
-                              "points"))
+                              "points (empty: the labels printed in the sheet's margins are read, with Tesseract)"))
         self.addParameter(hints)
         self.addParameter(QgsProcessingParameterBoolean(self.KEEP_UNVERIFIED, self.tr("Keep unverified results"),
                                                         False))
@@ -85,7 +85,7 @@ class GridAlgorithm(RegisterAlgorithm):
             raise QgsProcessingException(self.tr("Choose the CRS of the sheet."))
         grid_crs = self.parameterAsCrs(parameters, self.GRID_CRS, context)
         step = parameters.get(self.STEP)
-        params = {"hints": self.parameterAsFile(parameters, self.HINTS, context),
+        params = {"hints": self.parameterAsFile(parameters, self.HINTS, context) or None,
                   "step": None if step in (None, "") else self.parameterAsDouble(parameters, self.STEP, context),
                   "grid_crs": (grid_crs.authid() or grid_crs.toWkt()) if grid_crs.isValid() else None}
         self._grid = (params, crs.authid() or crs.toWkt())

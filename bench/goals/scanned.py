@@ -1,8 +1,10 @@
 """Scanned sheets georeferenced by their own printed grid (issue 56): ``hamta bench --methods auto --families
 scanned``.
 
-Three kinds of units, each run as a user runs it (:func:`hamta.core.run`, method 'grid', no reference):
+Four kinds of units, each run as a user runs it (:func:`hamta.core.run`, method 'grid', no reference):
 
+- no hints: the labels printed in the margins read (Tesseract), on the real sheets and the labelled
+  synthetic ones;
 - real sheets of ``../shared/data/scanned`` (a 1907 map with a faint 1-degree graticule, two NOAA charts, one
   turned 45 degrees), read as pixels only: 2 or 3 hints drawn from the sheet's own truth (crossings of the
   printed grid), placed within ``REAL_NOISE_PX`` of them, as a person would click. A result counts as right
@@ -48,6 +50,7 @@ def units(config):
     out = [("real", name, k, s) for name in REAL for k in (2, 3) for s in seeds]
     out += [("synthetic", spec.name, k, s) for spec in SPECS for k in (2, 3) for s in seeds]
     out += [("one-step-off", spec.name, 3, s) for spec in SPECS if spec.grid for s in seeds]
+    out += [("labels", name, 0, 0) for name in REAL] + [("labels", spec.name, 0, 0) for spec in SPECS if spec.labels]
     return out + [("size", f"{w}x{h}", 2, 0) for w, h in (SIZES if not config.quick else SIZES[:1])]
 
 
@@ -58,10 +61,10 @@ def run_unit(unit, config) -> list:
     folder = os.path.join(config.out_dir, "cases", "scanned", f"{kind}-{name}-{k}-{seed}")  # one per unit: the
     os.makedirs(folder, exist_ok=True)  # pool runs units side by side
     row = {"kind": kind, "sheet": name, "hints": k, "seed": seed}
-    if kind == "real":
+    if name in REAL:
         path, crs, grid_crs, step, right_px = REAL[name]
         truth = _truth(os.path.join(config.data_dir, FOLDER, name, "truth.csv"))
-        hints = _hints(truth, step, k, seed)
+        hints = _hints(truth, step, k, seed) if k else None
         to_px = _truth_error(truth, crs, grid_crs)
         path = os.path.join(config.data_dir, FOLDER, path)
     elif kind == "size":
@@ -80,6 +83,7 @@ def run_unit(unit, config) -> list:
         path, crs, grid_crs, right_px = sheet.path, spec.crs, spec.grid_crs, 2.0
         hints = sheet.hints(k, seed) if spec.grid else np.array([[300.0, 300.0, 500000.0, 5540000.0],
                                                                    [500.0, 310.0, 501000.0, 5540000.0]])
+        hints = hints if k else None
         if kind == "one-step-off":
             hints[-1, 2] += spec.step
         nodes = sheet.nodes()
@@ -172,7 +176,8 @@ def _nodes_of(sheet, width, height) -> np.ndarray:
 
 def tables(rows) -> list:
     out = []
-    for kind, title in (("real", "real sheets, 2 or 3 hints from the truth placed within 3 px"),
+    for kind, title in (("labels", "no hints: the labels printed in the margins read (Tesseract)"),
+                        ("real", "real sheets, 2 or 3 hints from the truth placed within 3 px"),
                         ("synthetic", "synthetic sheets (hamta.bench.sheets), 2 or 3 hints within 3 px"),
                         ("one-step-off", "synthetic sheets, 3 hints, one typed a step off: refused or right")):
         body = []

@@ -40,8 +40,8 @@ METHOD = "grid"
 @dataclass(frozen=True)
 class GridParams:
     """What a run by the grid is given beside the scan: ``hints`` (a QGIS ``.points`` file, or rows of scan x,
-    y, grid x, y), the grid's ``step`` and ``grid_crs`` (where the hints do not tell them) and ``crs``, the
-    sheet's (the output CRS option)."""
+    y, grid x, y; None: read from the labels printed in the margins), the grid's ``step`` and ``grid_crs``
+    (where the hints do not tell them) and ``crs``, the sheet's (the output CRS option)."""
 
     hints: object
     crs: str
@@ -61,11 +61,10 @@ class GridParams:
         if not getattr(output, "crs", None):
             raise InputError("Georeferencing a sheet by its printed grid needs the sheet's CRS (the output CRS): "
                              "the coordinates printed on it rarely say which it is.")
-        if params.get("hints") is None:
-            raise InputError("Georeferencing a sheet by its printed grid needs two or three crossings placed with "
-                             "their coordinates (a QGIS Georeferencer .points file) until the sheet's labels are read.")
-        step, hints = params.get("step"), params["hints"]
-        if isinstance(hints, os.PathLike):
+        step, hints = params.get("step"), params.get("hints")
+        if hints is None or hints == "":
+            hints = None
+        elif isinstance(hints, os.PathLike):
             hints = os.fspath(hints)
         elif not isinstance(hints, str):  # rows: kept as plain numbers (a run's request is JSON)
             hints = np.asarray(hints, float).reshape(-1, 4).tolist()
@@ -74,12 +73,14 @@ class GridParams:
 
 
 @run_scope()
-def register_grid(target, crs: str, hints: Sequence, *, grid_crs: Optional[str] = None, step: Optional[float] = None,
-                  options: RegisterOptions = RegisterOptions(), progress=None, is_canceled=None) -> RegistrationResult:
+def register_grid(target, crs: str, hints: Optional[Sequence] = None, *, grid_crs: Optional[str] = None,
+                  step: Optional[float] = None, options: RegisterOptions = RegisterOptions(), progress=None,
+                  is_canceled=None) -> RegistrationResult:
     """Georeference the scan ``target`` in ``crs`` by its printed grid, from ``hints``: rows of (scan x, y, grid x,
-    y) or a QGIS ``.points`` file (mapX, mapY = the grid's coordinates; sourceX, -sourceY = the scan's px).
-    ``grid_crs``: what the printed coordinates count in (see :func:`hints_crs`); ``step`` the grid's, where
-    the hints do not tell it. Nothing is written (see :func:`hamta.core.runner.run`)."""
+    y) or a QGIS ``.points`` file (mapX, mapY = the grid's coordinates; sourceX, -sourceY = the scan's px); None:
+    from the labels printed in its margins (:mod:`hamta.core.grid.labels`). ``grid_crs``: what the printed
+    coordinates count in (see :func:`hints_crs`); ``step`` the grid's, where the hints do not tell it. Nothing
+    is written (see :func:`hamta.core.runner.run`)."""
     from pyproj import CRS
 
     monitor = Monitor(progress, is_canceled)
@@ -89,17 +90,49 @@ def register_grid(target, crs: str, hints: Sequence, *, grid_crs: Optional[str] 
         frame_crs = CRS.from_user_input(crs)
     except Exception as exc:
         raise InputError(f"The sheet's CRS '{crs}' is not one PROJ knows: {exc}") from None
-    rows, file_crs = read_hints(hints, info.path)
-    grid_crs = grid_crs or file_crs or hints_crs(rows[:, 2:], frame_crs)
-    monitor.report(0.05, "grid: reading the scan")
-    opened = time.perf_counter()
+    notes, labels = [], None
     with LineSource.from_raster(info, resolve_bands(info, options.target_band)) as source:
+        if hints is None:
+            monitor.report(0.0, "grid: reading the labels")
+            rows, grid_crs, labels = _hints_from_labels(source, info, frame_crs, grid_crs, monitor.span(0.0, 0.5))
+            notes.append(f"no hints: {len(labels['used'])} labels read in the margins gave the crossings "
+                         + ", ".join(f"({gx:g}, {gy:g})" for gx, gy in rows[:, 2:]))
+            if labels["contradicting"]:
+                notes.append(f"labels that contradict the others, left out: {', '.join(labels['contradicting'][:8])}")
+        else:
+            rows, file_crs = read_hints(hints, info.path)
+            grid_crs = grid_crs or file_crs or hints_crs(rows[:, 2:], frame_crs)
+        monitor.report(0.5 if hints is None else 0.05, "grid: reading the scan")
+        opened = time.perf_counter()
         fit = fit_sheet(source, rows, frame_crs.to_wkt(), grid_crs, step, options.tolerance_px,
-                        progress=monitor.span(0.05, 0.9))
+                        progress=monitor.span(0.5 if hints is None else 0.05, 0.9))
     fitted = time.perf_counter()
+    fit = dataclasses.replace(fit, notes=fit.notes + notes)
     result = _result(info, fit, frame_crs, grid_crs, rows, options, {"open": opened - t0, "match": fitted - opened})
+    if labels is not None:
+        result.diagnostics["grid"]["labels"] = labels
     monitor.report(1.0, "grid: done")
     return result
+
+
+def _hints_from_labels(source, info, frame_crs, grid_crs, monitor):
+    """(hints, what the printed coordinates count in, {"used": texts, "contradicting": texts}) from the labels
+    in the sheet's margins."""
+    from pyproj import CRS, Transformer
+
+    from .labels import hints_from_labels, read_labels
+
+    labels = read_labels(source.grey, info.width, info.height, monitor.check)
+    degrees = sum(lab.kind == "degrees" for lab in labels)
+    metres = sum(lab.kind == "metres" and lab.value >= 1e5 for lab in labels)
+    geographic = CRS.from_user_input(grid_crs).is_geographic if grid_crs else degrees >= metres
+    if not geographic and frame_crs.is_geographic:
+        raise InputError(f"The labels printed on '{info.path}' look like metres of a projected grid, but the "
+                         f"sheet's CRS '{frame_crs.name}' is in degrees: give the CRS of the grid printed on it.")
+    grid_crs = grid_crs or (frame_crs.geodetic_crs.to_wkt() if geographic else frame_crs.to_wkt())
+    to_crs = Transformer.from_crs(CRS.from_user_input(grid_crs), frame_crs, always_xy=True)
+    rows, contradicting = hints_from_labels(labels, info.width, info.height, geographic, to_crs)
+    return rows, grid_crs, {"used": [lab.text for lab in labels], "contradicting": contradicting}
 
 
 def read_hints(hints, scan_path: str):

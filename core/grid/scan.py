@@ -64,6 +64,10 @@ class LineSource:
             return None
         return self.lines(x0, y0, x1, y1), float(x0), float(y0)
 
+    def grey(self, x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
+        """The scan's grey window [x0, x1) x [y0, y1) (inside the scan)."""
+        return self._read(x0, y0, x1, y1)
+
     def lines(self, x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
         """The line map of the window [x0, x1) x [y0, y1) (inside the scan), as on the whole scan."""
         m = LINE_WIDTH_PX

@@ -128,3 +128,53 @@ def test_a_palette_raster_is_read_as_the_brightness_of_its_colours(tmp_path):
     info = open_raster(str(path))
     image, _ = read_image(info, resolve_bands(info, None))
     np.testing.assert_allclose(image, [[255.0, 0.0], [0.299 * 255, 0.0]], atol=0.01)
+
+
+needs_tesseract = pytest.mark.skipif(not __import__("shutil").which("tesseract"),
+                                     reason="Tesseract is not installed (Debian: tesseract-ocr; make sysdeps)")
+
+
+@needs_tesseract
+@pytest.mark.parametrize("name", ["utm-km-labelled", "graticule-labelled"])
+def test_a_labelled_sheet_is_georeferenced_with_no_hint(sheets, name, tmp_path):
+    sheet = sheets[name]
+    out = tmp_path / "out"
+    assert main(["register", "--target", sheet.path, "--crs", sheet.spec.crs, "--out", str(out), "--quiet"]) == 0
+    report = json.loads((out / "report.json").read_text())
+    assert report["quality"]["verdict"] == "verified" and report["diagnostics"]["grid"]["labels"]["used"]
+    from pyproj import Transformer
+
+    nodes = sheet.nodes()
+    truth = np.column_stack(Transformer.from_crs(sheet.spec.grid_crs, sheet.spec.crs, always_xy=True)
+                            .transform(*nodes.T))
+    got = np.array([r["map"] for r in map_points_from_report(str(out / "report.json"), sheet.to_scan(nodes))])
+    assert np.hypot(*(got - truth).T).max() < 2.0 * sheet.spec.pixel_m
+
+
+def test_labels_are_parsed_as_degrees_minutes_or_metres():
+    from hamta.core.grid.labels import parse
+
+    assert parse("44°27'") == pytest.approx((44.45, "degrees", ""))
+    assert parse("146°") == (146.0, "degrees", "")
+    assert parse("72°N") == (72.0, "degrees", "N")
+    assert parse("30’") == (30.0, "minutes", "")
+    assert parse("6785000") == (6785000.0, "metres", "")
+    assert parse("Coast") is None and parse("61'") is None and parse("400°") is None
+
+
+def test_labels_that_contradict_the_others_are_named_and_left_out():
+    from hamta.core.grid.labels import Label, hints_from_labels
+
+    top = [Label(f"{v}", 500000.0 + v * 1000, "metres", "", (100.0 + 200 * v, 20.0), "top") for v in range(5)]
+    left = [Label(f"{v}", 6000000.0 + v * 1000, "metres", "", (20.0, 900.0 - 200 * v), "left") for v in range(5)]
+    wrong = Label("509000", 509000.0, "metres", "", (300.0, 980.0), "bottom")
+    hints, named = hints_from_labels(top + left + [wrong], 1000, 1000, geographic=False)
+    assert named == ["'509000' at (300, 980)"]
+    np.testing.assert_allclose(hints[0], [100.0, 900.0, 500000.0, 6000000.0], atol=1e-6)
+
+
+def test_without_tesseract_and_hints_the_message_says_what_to_install(sheets, tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr("hamta.core.grid.labels.TESSERACT", "no-such-tesseract")
+    sheet = sheets["utm-km-labelled"]
+    rc = main(["register", "--target", sheet.path, "--crs", sheet.spec.crs, "--out", str(tmp_path / "o"), "--quiet"])
+    assert rc != 0 and "tesseract-ocr" in capsys.readouterr().err
