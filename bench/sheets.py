@@ -62,10 +62,11 @@ SPECS = (
     SheetSpec("turned-sheet-faint", "EPSG:32618", "EPSG:32618", 1000.0, (500000.0, 4400000.0), ink=165,
               width_px=1.0, angle_deg=91.0, warp_px=1.5, yellow=True, noise=6.0, seed=5),
     SheetSpec("no-grid", "EPSG:32633", "EPSG:32633", 1000.0, (500000.0, 5540000.0), grid=False, seed=6),
-    SheetSpec("utm-km-labelled", "EPSG:32633", "EPSG:32633", 1000.0, (480000.0, 5570000.0), labels=True,
+    SheetSpec("utm-km-labelled", "EPSG:32633", "EPSG:32633", 1000.0, (480000.0, 5570000.0), size_px=(1100, 1000),
+              labels=True,
               angle_deg=0.8, warp_px=1.5, yellow=True, seed=7),
-    SheetSpec("graticule-labelled", "EPSG:32633", "EPSG:4326", 1 / 60, (14.6, 50.6), size_px=(1000, 800),
-              pixel_m=6.0, labels=True, angle_deg=-1.2, jpeg=75, seed=8),
+    SheetSpec("graticule-labelled", "EPSG:32633", "EPSG:4326", 1 / 60, (14.6, 50.61), size_px=(1500, 1500),
+              pixel_m=5.0, labels=True, angle_deg=-1.2, jpeg=75, seed=8),
 )
 
 
@@ -147,7 +148,7 @@ def render(spec: SheetSpec, folder: str, background=None) -> Sheet:
     return Sheet(path, spec, to_canvas, canvas_to_scan)
 
 
-MARGIN_PX = 110  # a labelled sheet's margin around its map face
+MARGIN_PX = 150  # a labelled sheet's margin around its map face
 
 
 def _margin(canvas, spec: SheetSpec, to_canvas, m: int) -> None:

@@ -435,11 +435,6 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/grid_algorithm.py" line="57"/>
-        <source>Hints: crossings with their coordinates (.points)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="../processing/grid_algorithm.py" line="63"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
@@ -472,6 +467,11 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/grid_algorithm.py" line="59"/>
         <source>Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, with their coordinates as printed (degrees, or metres of the grid), saved as GCP points (empty: the labels printed in the sheet&apos;s margins are read, with Tesseract)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="57"/>
+        <source>Hints: crossings placed (.points)</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

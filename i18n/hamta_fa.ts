@@ -524,7 +524,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/grid_algorithm.py" line="57"/>
         <source>Hints: crossings with their coordinates (.points)</source>
-        <translation>راهنماها: تقاطع‌ها با مختصاتشان (.points)</translation>
+        <translation type="obsolete">راهنماها: تقاطع‌ها با مختصاتشان (.points)</translation>
     </message>
     <message>
         <location filename="../processing/grid_algorithm.py" line="59"/>
@@ -565,6 +565,11 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <location filename="../processing/grid_algorithm.py" line="59"/>
         <source>Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, with their coordinates as printed (degrees, or metres of the grid), saved as GCP points (empty: the labels printed in the sheet&apos;s margins are read, with Tesseract)</source>
         <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز QGIS گذاشته شده‌اند، با مختصاتی که چاپ شده (درجه، یا متر شبکه)، ذخیره‌شده به‌صورت نقاط کنترل (خالی: برچسب‌های چاپ‌شده در حاشیهٔ برگه با Tesseract خوانده می‌شوند)</translation>
+    </message>
+    <message>
+        <location filename="../processing/grid_algorithm.py" line="57"/>
+        <source>Hints: crossings placed (.points)</source>
+        <translation>راهنماها: تقاطع‌های گذاشته‌شده (.points)</translation>
     </message>
 </context>
 <context>

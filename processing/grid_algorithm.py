@@ -54,7 +54,7 @@ class GridAlgorithm(RegisterAlgorithm):
     def initAlgorithm(self, config=None):
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Scanned map (to georeference)")))
         self.addParameter(QgsProcessingParameterCrs(self.SHEET_CRS, self.tr("CRS of the sheet (its projection)")))
-        hints = QgsProcessingParameterFile(self.HINTS, self.tr("Hints: crossings with their coordinates (.points)"),
+        hints = QgsProcessingParameterFile(self.HINTS, self.tr("Hints: crossings placed (.points)"),
                                            extension="points", optional=True)
         hints.setHelp(self.tr("Two or three crossings of the printed lines placed roughly in the QGIS Georeferencer, "
                               "with their coordinates as printed (degrees, or metres of the grid), saved as GCP "

@@ -30,7 +30,7 @@ import numpy as np
 from ..errors import InputError, InsufficientMatchesError
 
 TESSERACT = "tesseract"
-BAND = 0.15  # of the sheet's shorter side: how deep each edge's band is read (margins of small sheets are wide)
+BAND = 0.2  # of the sheet's shorter side: how deep each edge's band is read (margins of small sheets are wide)
 CHUNK_PX = 4000  # a band is read in pieces this long (Tesseract's time and memory), overlapping by a label
 MIN_CONFIDENCE = 60.0  # Tesseract's word confidence (0-100) a number alone needs to be taken for metres (a
 # degree sign, or minutes, make a label whatever the confidence: the fit of each family leaves out what disagrees)
@@ -175,8 +175,9 @@ def _family(labels: List[Label], axis: int, geographic: bool):
     places = np.array([lab.xy[axis] for lab in labels])
     values = np.array(values)
     agree = np.abs(a + b * places - values) <= tol
-    if agree.sum() < MIN_LABELS:
-        return None, []
+    printed_in_full = np.array([lab.kind != "metres" or len(re.sub(r"\D", "", lab.text)) >= 6 for lab in labels])
+    if agree.sum() < MIN_LABELS or (agree & printed_in_full).sum() < 2:  # abbreviated metres rest on two full
+        return None, []  # values that agree: one misread (a digit lost) would move the whole family
     sign = -1.0 if geographic and (b < 0 if axis == 0 else b > 0) else 1.0  # west, south
     points = {}
     for side in {lab.side for lab in labels}:

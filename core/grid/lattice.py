@@ -54,16 +54,33 @@ def fit_lattice(work: np.ndarray, factor: int, lines, start: dict, spacing_px: f
 
     def climb(m, image, move):
         ink = _ink(image, factor)
-        res = minimize(lambda v: -ink(design[1] @ v.reshape(-1, 2)), m.ravel(), method="Powell", bounds=bounds,
+        start = np.clip(m.ravel(), [lo for lo, _ in bounds], [hi for _, hi in bounds])
+        res = minimize(lambda v: -ink(design[1] @ v.reshape(-1, 2)), start, method="Powell", bounds=bounds,
                        options={"xtol": 0.02 * factor, "ftol": 1e-5, "direc": np.eye(m.size) * move})
         return res.x.reshape(-1, 2)
+
+    def similar(m, v):  # m moved by a shift, a scale and a turn about the lattice's centre (scan px)
+        tx, ty, grow, turn = v
+        out = m.copy()
+        out[0] += (tx, ty)
+        for k in (1, 2):
+            out[k] = m[k] * (1 + grow) + turn * np.array([-m[k][1], m[k][0]])
+        return out
+
+    def climb_similar(m, image, move):  # four parameters where the line map is blurred: a steadier basin
+        ink = _ink(image, factor)
+        size = max(float(np.hypot(*m[1])), float(np.hypot(*m[2])), 1e-9)
+        res = minimize(lambda v: -ink(design[1] @ similar(m, v)), np.zeros(4), method="Powell",
+                       bounds=[(-reach, reach)] * 2 + [(-reach / size, reach / size)] * 2,
+                       options={"xtol": 1e-4, "ftol": 1e-5, "direc": np.diag([move, move, move / size, move / size])})
+        return similar(m, res.x)
 
     fine = cv2.GaussianBlur(work, (0, 0), 0.7)
     ink = _ink(fine, factor)
     tries, current = [climb(m, fine, factor * 0.5)], m  # from the hints' model as it is, and from a wide basin
     for blur in BLURS[:-1]:
         sigma = blur * step_work
-        current = climb(current, cv2.GaussianBlur(work, (0, 0), sigma), sigma * factor)
+        current = climb_similar(current, cv2.GaussianBlur(work, (0, 0), sigma), sigma * factor)
         tries.append(climb(current, fine, factor * 0.5))
     m = max(tries, key=lambda t: ink(design[1] @ t))
     best = Lattice(_coef(centre, scale, m, 1), ink(design[1] @ m), 1)

@@ -62,7 +62,7 @@ class GridParams:
             raise InputError("Georeferencing a sheet by its printed grid needs the sheet's CRS (the output CRS): "
                              "the coordinates printed on it rarely say which it is.")
         step, hints = params.get("step"), params.get("hints")
-        if hints is None or hints == "":
+        if hints is None or (isinstance(hints, str) and not hints):
             hints = None
         elif isinstance(hints, os.PathLike):
             hints = os.fspath(hints)

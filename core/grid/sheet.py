@@ -119,6 +119,17 @@ def fit_sheet(scan, hints: Sequence, crs: str, grid_crs: Optional[str] = None,
     radius = max(3.0, 0.6 * factor, LOCAL_SHARE * spacing)
     monitor.report(0.6, "grid: each crossing")
     found = _found(source, nodes, lattice.coef, to_crs, step, radius, spacing, monitor.check)
+    for _ in range(PASSES):  # again, where the crossings found put the others (the lattice is placed on a
+        # reduced line map: off by a few px where the paper or the projection bends)
+        if len(found) < 3 or len(found) == len(nodes):
+            break
+        again = _trimmed(found, _order(found, shape))
+        coef = fit_poly(again[:, 2:4], again[:, :2], _order(again, shape))
+        more = _found(source, nodes, coef, to_crs, step, max(radius, 2 * LOCAL_SHARE * spacing), spacing,
+                      monitor.check)
+        if len(more) <= len(found):
+            break
+        found = more
     if len(found) < 3:
         raise InsufficientMatchesError(f"Only {len(found)} crossings of the printed grid were found on the lattice "
                                        "the hints give: check the hints' coordinates and the grid's step.",
@@ -136,18 +147,29 @@ def fit_sheet(scan, hints: Sequence, crs: str, grid_crs: Optional[str] = None,
              f"others: {loo:.2f} px RMS with the {MODELS[order - 1][0]} model; they cover {spread:.0%} of the sheet; "
              f"the lattice of whole lines holds {ink:.2f} times the ink of its lines moved by part of a step, and is "
              f"within {apart:.1f} px of the crossings' model"]
-    limit = max(2 * tolerance_px, factor)
-    reachable = _inside(apply_poly(lattice.coef, np.column_stack(to_crs.transform(*nodes.T))), shape,
-                        0.45 * spacing + radius + 2)  # crossings whose two strips lie on the scan
-    share = len(found) / max(int(reachable.sum()), 1)
+    limit = max(2 * tolerance_px, factor, APART * spacing)
+    node_px = apply_poly(lattice.coef, np.column_stack(to_crs.transform(*nodes.T)))
+    reachable = _inside(node_px, shape, 0.45 * spacing + radius + 2) & _within(node_px, found[:, :2], 0.25 * spacing)
+    share = len(found) / max(int(reachable.sum()), 1)  # of the crossings where both strips lie on the scan, among
+    # those found (a sheet's margin has no grid)
     sound = len(found) >= MIN_FIT and spread >= MIN_SPREAD and apart <= limit and share >= MIN_SHARE
-    notes += [f"only {len(found)} of the {int(reachable.sum())} crossings the lattice puts on the sheet were found "
+    notes += [f"only {len(found)} of the {int(reachable.sum())} crossings the lattice puts among them were found "
               f"on printed lines ({MIN_SHARE:.0%} needed): the lattice may not be the printed grid"] \
         if share < MIN_SHARE else []
     verified = sound and loo <= tolerance_px
     monitor.report(1.0, "grid: the model")
     return SheetFit(found, MODELS[order - 1][0], order, loo, verified, step, notes, held_out, spread,
                     int(reachable.sum()), apart, limit, ink, sound)
+
+
+def _within(px, around, reach: float) -> np.ndarray:
+    """Which of ``px`` lie within ``reach`` px of the convex hull of ``around`` (all where it has no area)."""
+    import cv2
+
+    if len(around) < 3:
+        return np.ones(len(px), bool)
+    hull = cv2.convexHull(around.astype(np.float32))
+    return np.array([cv2.pointPolygonTest(hull, (float(x), float(y)), True) >= -reach for x, y in px])
 
 
 def _inside(px, shape, margin: float = 0.0) -> np.ndarray:
@@ -159,6 +181,7 @@ MIN_CONTRAST = 1.3  # the lattice's ink over its lines moved by part of a step: 
 MIN_SPREAD = 0.25  # share of the sheet the crossings must cover for a verified result
 MIN_SHARE = 0.5  # of the crossings the lattice puts on the sheet, those found on printed lines for a verified result
 LOCAL_SHARE = 0.04  # of a step: how far from the lattice's place a crossing is looked for
+PASSES = 3  # times the crossings are looked for again where those found put them
 FAINT = 0.3  # of the median crossing's ink: fainter crossings are noise (off the paper, a gap in the lines)
 
 
@@ -203,13 +226,17 @@ def _check_hints(hints, hint_xy, coef, spacing) -> None:
                          "register the sheet onto a reference layer.")
 
 
+STEP_FIT = 0.005  # of a step: how far from a multiple of it a printed coordinate may be (rounding of
+# seconds: 44°29' is 44.48333)
+
+
 def grid_steps(coords: np.ndarray, steps: Sequence[float]) -> List[float]:
-    """Those of ``steps`` that every coordinate of ``coords`` is a multiple of (to 1 % of the step), largest
-    first: hints a few steps apart fit twice the printed step as well as the step itself."""
+    """Those of ``steps`` that every coordinate of ``coords`` is a multiple of (to :data:`STEP_FIT` of the step),
+    largest first: hints a few steps apart fit twice the printed step as well as the step itself."""
     fits = []
     for s in steps:
         ratio = np.asarray(coords, float) / s
-        if np.all(np.abs(ratio - np.round(ratio)) <= 0.01):
+        if np.all(np.abs(ratio - np.round(ratio)) <= STEP_FIT):
             fits.append(float(s))
     if not fits:
         raise InputError("The hints' coordinates are not on a grid of a usual step (degrees: 10 to 1'; metres: 100 "
@@ -240,6 +267,8 @@ def _lattice(source, works, forward, backward, from_crs, to_crs, step):
 
 
 MIN_STEP_PX = 12.0  # a printed grid's crossings are at least this far apart on a scan
+APART = 0.1  # of a step: how far the crossings' model may lie from the lattice of whole lines (placed on a line
+# map reduced by up to a tenth of a step, and only affine or quadratic)
 STEPS_SPAN = 10  # the steps the hints fit that are tried: down to a tenth of the largest (hints on crossings ten
 # steps apart at most)
 

@@ -148,7 +148,7 @@ def test_a_labelled_sheet_is_georeferenced_with_no_hint(sheets, name, tmp_path):
     truth = np.column_stack(Transformer.from_crs(sheet.spec.grid_crs, sheet.spec.crs, always_xy=True)
                             .transform(*nodes.T))
     got = np.array([r["map"] for r in map_points_from_report(str(out / "report.json"), sheet.to_scan(nodes))])
-    assert np.hypot(*(got - truth).T).max() < 2.0 * sheet.spec.pixel_m
+    assert np.hypot(*(got - truth).T).max() < 3.0 * sheet.spec.pixel_m  # a label misread would move it by a step
 
 
 def test_labels_are_parsed_as_degrees_minutes_or_metres():
@@ -162,15 +162,21 @@ def test_labels_are_parsed_as_degrees_minutes_or_metres():
     assert parse("Coast") is None and parse("61'") is None and parse("400°") is None
 
 
-def test_labels_that_contradict_the_others_are_named_and_left_out():
+def test_labels_that_contradict_the_others_are_named_and_left_out_and_one_full_value_is_not_enough():
     from hamta.core.grid.labels import Label, hints_from_labels
 
-    top = [Label(f"{v}", 500000.0 + v * 1000, "metres", "", (100.0 + 200 * v, 20.0), "top") for v in range(5)]
-    left = [Label(f"{v}", 6000000.0 + v * 1000, "metres", "", (20.0, 900.0 - 200 * v), "left") for v in range(5)]
+    top = [Label(f"{500000 + v * 1000}", 500000.0 + v * 1000, "metres", "", (100.0 + 200 * v, 20.0), "top")
+           for v in range(5)]
+    left = [Label(f"{6000000 + v * 1000}", 6000000.0 + v * 1000, "metres", "", (20.0, 900.0 - 200 * v), "left")
+            for v in range(5)]
     wrong = Label("509000", 509000.0, "metres", "", (300.0, 980.0), "bottom")
     hints, named = hints_from_labels(top + left + [wrong], 1000, 1000, geographic=False)
     assert named == ["'509000' at (300, 980)"]
     np.testing.assert_allclose(hints[0], [100.0, 900.0, 500000.0, 6000000.0], atol=1e-6)
+    # kilometres abbreviated ('03') on one full value (a digit lost in reading it would move every line) are refused
+    short = [Label(f"{v:02d}", float(v), "metres", "", (100.0 + 200 * v, 20.0), "top") for v in range(1, 5)]
+    with pytest.raises(InsufficientMatchesError, match="top and bottom"):
+        hints_from_labels(top[:1] + short + left, 1000, 1000, geographic=False)
 
 
 def test_without_tesseract_and_hints_the_message_says_what_to_install(sheets, tmp_path, monkeypatch, capsys):
