@@ -35,6 +35,7 @@ CHUNK_PX = 4000  # a band is read in pieces this long (Tesseract's time and memo
 MIN_CONFIDENCE = 60.0  # Tesseract's word confidence (0-100) a number alone needs to be taken for metres (a
 # degree sign, or minutes, make a label whatever the confidence: the fit of each family leaves out what disagrees)
 MIN_LABELS = 3  # per family of lines, agreeing
+PLACED = 0.05  # of a step: how far from where the sheet's CRS puts its line a label of one edge may be
 DEGREE = r"(\d{1,3})\s*[°ºo]\s*(?:(\d{1,2}(?:\.\d+)?)\s*['’′`!]?)?\s*([NSEW])?"
 MINUTES = r"(\d{1,2})\s*['’′`]"
 METRES = r"(\d{2,7})(?:\s*m)?"
@@ -137,8 +138,14 @@ def hints_from_labels(labels: List[Label], width: int, height: int, geographic: 
     for axis in (0, 1):
         other = float(np.median(families[1 - axis]["lines"]))
         families[axis]["project"] = _projection(to_crs, axis, other)
-        families[axis]["sides"] = {side: tuple(np.polyfit(places, [families[axis]["project"](v) for v in values], 1)
-                                               [::-1]) for side, (places, values) in families[axis]["points"].items()}
+        families[axis]["sides"] = {}
+        for side, (places, values) in families[axis]["points"].items():
+            fit = _robust_line([(p, families[axis]["project"](v)) for p, v in zip(places, values)], PLACED, 2)
+            if fit is not None:  # the labels of one edge where the sheet's CRS puts them: a label a tenth of a
+                families[axis]["sides"][side] = fit[:2]  # step off its line is not one of them
+        if not families[axis]["sides"]:
+            raise InsufficientMatchesError("The printed coordinates read do not fall where the sheet's CRS puts "
+                                           "them: check the CRS, or give two or three crossings as hints.", 0, 2)
     named = [f"'{lab.text}' at ({lab.xy[0]:.0f}, {lab.xy[1]:.0f})" for axis, bad in enumerate(contradicting)
              for lab in bad if not families[1 - axis]["agrees"](lab)]  # not a label of the other edges' lines
     return _crossings(families, width, height), named
@@ -216,16 +223,16 @@ def _expanded(labels: List[Label]) -> List[Label]:
     return out
 
 
-def _robust_line(points):
+def _robust_line(points, share: float = 0.2, least: int = MIN_LABELS):
     """(a, b, tolerance) of value = a + b * place agreeing with most ``points`` (pairs tried in turn; the
-    tolerance a fifth of the median step between neighbouring values), or None."""
-    if len(points) < MIN_LABELS:
+    tolerance ``share`` of the median step between neighbouring values), or None with fewer than ``least``."""
+    if len(points) < least:
         return None
     p = np.array(points, float)
     steps = np.diff(np.unique(p[:, 1]))
     if not len(steps):
         return None
-    tol = 0.2 * float(np.median(steps))
+    tol = share * float(np.median(steps))
     best, best_n = None, 0
     for i in range(len(p)):
         for j in range(i + 1, len(p)):
@@ -236,7 +243,7 @@ def _robust_line(points):
             n = int((np.abs(a + b * p[:, 0] - p[:, 1]) <= tol).sum())
             if n > best_n:
                 best, best_n = (a, b), n
-    if best is None or best_n < MIN_LABELS:
+    if best is None or best_n < least:
         return None
     on = np.abs(best[0] + best[1] * p[:, 0] - p[:, 1]) <= tol
     b, a = np.polyfit(p[on, 0], p[on, 1], 1)

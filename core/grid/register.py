@@ -95,7 +95,7 @@ def register_grid(target, crs: str, hints: Optional[Sequence] = None, *, grid_cr
         if hints is None:
             monitor.report(0.0, "grid: reading the labels")
             rows, grid_crs, labels = _hints_from_labels(source, info, frame_crs, grid_crs, monitor.span(0.0, 0.5))
-            notes.append(f"no hints: {len(labels['used'])} labels read in the margins gave the crossings "
+            notes.append("no hints: the coordinates printed in the margins gave the crossings "
                          + ", ".join(f"({gx:g}, {gy:g})" for gx, gy in rows[:, 2:]))
             if labels["contradicting"]:
                 notes.append(f"labels that contradict the others, left out: {', '.join(labels['contradicting'][:8])}")
