@@ -22,6 +22,7 @@ from typing import List, Optional, Sequence
 import numpy as np
 
 from ..errors import InputError, InsufficientMatchesError
+from .crossings import MODELS, held_out_lines, ordered, spread_of, trimmed, without_stray_lines
 from .lattice import contrast, fit_lattice
 from .lines import crossing
 from .polynomial import apply_poly, fit_poly
@@ -32,10 +33,6 @@ DEGREE_STEPS = (10, 5, 2, 1, 0.5, 1 / 3, 0.25, 1 / 6, 1 / 12, 1 / 24, 1 / 60)  #
 METRE_STEPS = (100000, 50000, 20000, 10000, 5000, 2000, 1000, 500, 200, 100)  # national grids
 MAX_CROSSINGS = 4000
 MIN_FIT = 6  # crossings a verified result needs (and one taken for a wrong line can be told)
-MODELS = (("affine", 1, 3, 0.0), ("polynomial-2", 2, 12, 0.5), ("polynomial-3", 3, 30, 0.8))  # name, order, least
-# crossings, least share of the sheet they must cover (a polynomial bends wildly beyond its points, and the whole
-# sheet is warped through it)
-
 
 @dataclass
 class SheetFit:
@@ -123,8 +120,8 @@ def fit_sheet(scan, hints: Sequence, crs: str, grid_crs: Optional[str] = None,
         # reduced line map: off by a few px where the paper or the projection bends)
         if len(found) < 3 or len(found) == len(nodes):
             break
-        again = _trimmed(found, _order(found, shape))
-        coef = fit_poly(again[:, 2:4], again[:, :2], _order(again, shape))
+        again = trimmed(found, ordered(found, shape))
+        coef = fit_poly(again[:, 2:4], again[:, :2], ordered(again, shape))
         more = _found(source, nodes, coef, to_crs, step, max(radius, 2 * LOCAL_SHARE * spacing), spacing,
                       monitor.check)
         if len(more) <= len(found):
@@ -134,13 +131,13 @@ def fit_sheet(scan, hints: Sequence, crs: str, grid_crs: Optional[str] = None,
         raise InsufficientMatchesError(f"Only {len(found)} crossings of the printed grid were found on the lattice "
                                        "the hints give: check the hints' coordinates and the grid's step.",
                                        len(found), 6)
-    order = _order(found, shape)
-    found = _trimmed(found, order)
-    order = _order(found, shape)
-    found = _without_stray_lines(found, order)
-    order = _order(found, shape)
-    loo, held_out, _ = _held_out_lines(found, order)
-    spread = _spread(found[:, :2], shape)
+    order = ordered(found, shape)
+    found = trimmed(found, order)
+    order = ordered(found, shape)
+    found = without_stray_lines(found, order)
+    order = ordered(found, shape)
+    loo, held_out, _ = held_out_lines(found, order)
+    spread = spread_of(found[:, :2], shape)
     backward = fit_poly(found[:, 2:4], found[:, :2], order)
     apart = float(np.max(np.hypot(*(apply_poly(backward, found[:, 2:4]) - apply_poly(lattice.coef, found[:, 2:4])).T)))
     notes = [f"{len(found)} crossings of the printed grid found (step {step:g}); each grid line predicted from the "
@@ -330,85 +327,3 @@ def _found(source, nodes, coef, to_crs, step, radius, spacing, check=lambda: Non
     rows = np.array(rows).reshape(-1, 7)
     inked = rows[:, 6] >= FAINT * np.median(rows[:, 6]) if len(rows) else np.zeros(0, bool)
     return rows[inked, :6]
-
-
-def _order(found, shape=None) -> int:
-    """The model order with the smallest leave-one-out error (a higher order only when 10 % better, on enough
-    crossings; for the sheet's model, ``shape`` given, covering enough of it: while the crossings are being
-    found, the model need only reach the next ring)."""
-    best, best_loo = 1, _loo(found, 1)
-    spread = 1.0 if shape is None else _spread(found[:, :2], shape)
-    for _, order, least, cover in MODELS[1:]:
-        if len(found) < least or spread < cover:
-            break
-        loo = _loo(found, order)
-        if loo < 0.9 * best_loo:
-            best, best_loo = order, loo
-    return best
-
-
-def _loo(found, order) -> float:
-    """RMS (scan px) of each crossing predicted from its crs coordinates by a model fitted on the others."""
-    n = len(found)
-    if n <= MODELS[order - 1][2]:
-        return math.inf
-    errors = []
-    for i in range(n):
-        keep = np.arange(n) != i
-        coef = fit_poly(found[keep, 2:4], found[keep, :2], order)
-        errors.append(np.hypot(*(apply_poly(coef, found[i:i + 1, 2:4])[0] - found[i, :2])))
-    return float(np.sqrt(np.mean(np.square(errors))))
-
-
-def _held_out_lines(found, order):
-    """(RMS in scan px, (n, 2) error of each crossing, {(axis, value): RMS of that line}) of each crossing
-    predicted by the model fitted without its grid line: each line of constant grid x left out in turn, and
-    each of constant grid y (a crossing's error is the larger of its two). A line taken on the sheet's frame
-    or a border, shifted as a whole, fits with the others crossing by crossing but not as a line."""
-    errors, per_line = np.zeros((len(found), 2)), {}
-    for axis in (4, 5):
-        for value in np.unique(found[:, axis]):
-            on = found[:, axis] == value
-            if (~on).sum() <= MODELS[order - 1][2]:
-                return math.inf, np.full((len(found), 2), np.inf), {}
-            e = apply_poly(fit_poly(found[~on, 2:4], found[~on, :2], order), found[on, 2:4]) - found[on, :2]
-            per_line[(axis, value)] = float(np.sqrt(np.mean(np.sum(e ** 2, axis=1))))
-            worse = np.hypot(*e.T) > np.hypot(*errors[on].T)
-            errors[np.flatnonzero(on)[worse]] = e[worse]
-    return float(np.sqrt(np.mean(np.sum(errors ** 2, axis=1)))), errors, per_line
-
-
-def _without_stray_lines(found, order) -> np.ndarray:
-    """``found`` without the grid lines that the others predict worst, one at a time, while one is beyond
-    1.5 px and 3 times the median line."""
-    while len(found) > 2 * MODELS[order - 1][2]:
-        per_line = _held_out_lines(found, order)[2]
-        if not per_line:
-            break
-        (axis, value), worst = max(per_line.items(), key=lambda kv: kv[1])
-        if worst <= max(1.5, 3.0 * float(np.median(list(per_line.values())))):
-            break
-        found = found[found[:, axis] != value]
-    return found
-
-
-def _trimmed(found, order) -> np.ndarray:
-    """``found`` without crossings whose residual is beyond 3 times the median (and 1.5 px), refitted until
-    none is: a line of the map's content taken for a grid line."""
-    while True:
-        coef = fit_poly(found[:, 2:4], found[:, :2], order)
-        res = np.hypot(*(apply_poly(coef, found[:, 2:4]) - found[:, :2]).T)
-        keep = res <= max(1.5, 3.0 * float(np.median(res)))
-        if keep.all() or keep.sum() < max(3, MODELS[order - 1][2] + 1):
-            return found
-        found = found[keep]
-
-
-def _spread(px, shape) -> float:
-    """The share of the sheet the crossings' convex hull covers."""
-    import cv2
-
-    if len(px) < 3:
-        return 0.0
-    hull = cv2.convexHull(px.astype(np.float32))
-    return float(cv2.contourArea(hull)) / (shape[0] * shape[1])

@@ -7,7 +7,8 @@ A length is told in the pixels it was measured in, named ('px of the basemap at 
 px'), then on the ground and in the target's own pixels. Web Mercator (EPSG:3857, the CRS of XYZ
 basemaps) stretches lengths by 1/cos(latitude): its "metres" are ground metres only at the equator
 (11.81 of them are 7.1 m on the ground at 53° N), so its lengths are scaled by cos(latitude) at the
-result's centre (:func:`ground_factor`) and said to be on the ground.
+result's centre (:func:`ground_factor`) and said to be on the ground; so are those of any other projection
+that stretches lengths there by more than 2 % (World Mercator of a nautical chart, by its scale factor).
 """
 from __future__ import annotations
 
@@ -54,7 +55,7 @@ class MapScale:
     crs: str
     unit_name: str
     pixel_size: float  # map units per reference pixel (geometric mean of the two axes)
-    ground: Optional[float] = None  # ground metres per map unit where they differ (Web Mercator), else None
+    ground: Optional[float] = None  # ground metres per map unit where they differ (Mercator), else None
     latitude: Optional[float] = None  # degrees, where ``ground`` was taken
     per_target_px: Optional[float] = None  # reference px per target px at the target's centre, when known
     px_name: str = "reference px"  # what a reference pixel is called: 'px of the basemap at zoom 14'
@@ -101,6 +102,8 @@ def map_scale(result) -> Optional[MapScale]:
     name, unit = describe_crs(result.reference.crs)
     latitude = centre_latitude(result) if is_web_mercator(result.reference.crs) else None
     ground = None if latitude is None else math.cos(math.radians(latitude))
+    if latitude is None and unit in METRE:
+        latitude, ground = _projection_scale(result)
     return MapScale(name, unit, result.reference.pixel_size, ground=ground, latitude=latitude,
                     per_target_px=registered_scale(result), px_name=reference_px_name(result))
 
@@ -137,9 +140,32 @@ def centre_latitude(result) -> Optional[float]:
     return math.degrees(math.atan(math.sinh(y / WEB_MERCATOR_RADIUS))) if math.isfinite(y) else None
 
 
+STRETCH = 0.02  # a projection whose scale at the centre differs from 1 by more: its metres are not ground metres
+
+
+def _projection_scale(result) -> Tuple[Optional[float], Optional[float]]:
+    """(latitude, ground metres per map metre) at the target's centre as registered where the reference's
+    projection stretches lengths there by more than :data:`STRETCH` (World Mercator at 70 degrees: 2.9
+    times), else (None, None)."""
+    from pyproj import CRS as ProjCRS
+    from pyproj import Proj, Transformer
+
+    try:
+        _, xy = result.map_points([[result.target.width / 2.0, result.target.height / 2.0]])
+        crs = ProjCRS.from_user_input(result.reference.crs.to_wkt())
+        if not crs.is_projected:
+            return None, None
+        lon, lat = Transformer.from_crs(crs, crs.geodetic_crs, always_xy=True).transform(*xy[0])
+        k = math.sqrt(Proj(crs).get_factors(lon, lat).areal_scale)
+    except Exception:  # a centre the projection cannot take: its map units are read as they are
+        return None, None
+    return (float(lat), 1.0 / k) if math.isfinite(k) and k > 0 and abs(k - 1.0) > STRETCH else (None, None)
+
+
 def ground_factor(result) -> Optional[float]:
     """Ground metres per map unit at ``result``'s centre where map units are not ground lengths: cos(latitude)
-    for Web Mercator; None for other CRSs (their map units are read as they are) and in pixel mode."""
+    for Web Mercator, the inverse of the scale factor for a projection that stretches lengths more than
+    :data:`STRETCH`; None for other CRSs (their map units are read as they are) and in pixel mode."""
     scale = map_scale(result)
     return None if scale is None else scale.ground
 

@@ -1,0 +1,97 @@
+"""The crossings found on a sheet, judged as a whole: the model order the crossings support (leave-one-out),
+each grid line predicted without it (the check that a line of the map's frame, a border or a road taken for
+a grid line fails), and the crossings a robust fit leaves out. Coordinates: rows of scan x, y, crs x, y,
+grid x, y (as :func:`hamta.core.grid.sheet.fit_sheet` finds them)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .polynomial import apply_poly, fit_poly
+
+MODELS = (("affine", 1, 3, 0.0), ("polynomial-2", 2, 12, 0.5), ("polynomial-3", 3, 30, 0.8))  # name, order, least
+# crossings, least share of the sheet they must cover (a polynomial bends wildly beyond its points, and the whole
+# sheet is warped through it)
+
+
+def ordered(found, shape=None) -> int:
+    """The model order with the smallest leave-one-out error (a higher order only when 10 % better, on enough
+    crossings; for the sheet's model, ``shape`` given, covering enough of it: while the crossings are being
+    found, the model need only reach the next ring)."""
+    best, best_loo = 1, _loo(found, 1)
+    spread = 1.0 if shape is None else spread_of(found[:, :2], shape)
+    for _, order, least, cover in MODELS[1:]:
+        if len(found) < least or spread < cover:
+            break
+        loo = _loo(found, order)
+        if loo < 0.9 * best_loo:
+            best, best_loo = order, loo
+    return best
+
+
+def _loo(found, order) -> float:
+    """RMS (scan px) of each crossing predicted from its crs coordinates by a model fitted on the others."""
+    n = len(found)
+    if n <= MODELS[order - 1][2]:
+        return math.inf
+    errors = []
+    for i in range(n):
+        keep = np.arange(n) != i
+        coef = fit_poly(found[keep, 2:4], found[keep, :2], order)
+        errors.append(np.hypot(*(apply_poly(coef, found[i:i + 1, 2:4])[0] - found[i, :2])))
+    return float(np.sqrt(np.mean(np.square(errors))))
+
+
+def held_out_lines(found, order):
+    """(RMS in scan px, (n, 2) error of each crossing, {(axis, value): RMS of that line}) of each crossing
+    predicted by the model fitted without its grid line: each line of constant grid x left out in turn, and
+    each of constant grid y (a crossing's error is the larger of its two). A line taken on the sheet's frame
+    or a border, shifted as a whole, fits with the others crossing by crossing but not as a line."""
+    errors, per_line = np.zeros((len(found), 2)), {}
+    for axis in (4, 5):
+        for value in np.unique(found[:, axis]):
+            on = found[:, axis] == value
+            if (~on).sum() <= MODELS[order - 1][2]:
+                return math.inf, np.full((len(found), 2), np.inf), {}
+            e = apply_poly(fit_poly(found[~on, 2:4], found[~on, :2], order), found[on, 2:4]) - found[on, :2]
+            per_line[(axis, value)] = float(np.sqrt(np.mean(np.sum(e ** 2, axis=1))))
+            worse = np.hypot(*e.T) > np.hypot(*errors[on].T)
+            errors[np.flatnonzero(on)[worse]] = e[worse]
+    return float(np.sqrt(np.mean(np.sum(errors ** 2, axis=1)))), errors, per_line
+
+
+def without_stray_lines(found, order) -> np.ndarray:
+    """``found`` without the grid lines that the others predict worst, one at a time, while one is beyond
+    1.5 px and 3 times the median line."""
+    while len(found) > 2 * MODELS[order - 1][2]:
+        per_line = held_out_lines(found, order)[2]
+        if not per_line:
+            break
+        (axis, value), worst = max(per_line.items(), key=lambda kv: kv[1])
+        if worst <= max(1.5, 3.0 * float(np.median(list(per_line.values())))):
+            break
+        found = found[found[:, axis] != value]
+    return found
+
+
+def trimmed(found, order) -> np.ndarray:
+    """``found`` without crossings whose residual is beyond 3 times the median (and 1.5 px), refitted until
+    none is: a line of the map's content taken for a grid line."""
+    while True:
+        coef = fit_poly(found[:, 2:4], found[:, :2], order)
+        res = np.hypot(*(apply_poly(coef, found[:, 2:4]) - found[:, :2]).T)
+        keep = res <= max(1.5, 3.0 * float(np.median(res)))
+        if keep.all() or keep.sum() < max(3, MODELS[order - 1][2] + 1):
+            return found
+        found = found[keep]
+
+
+def spread_of(px, shape) -> float:
+    """The share of the sheet the crossings' convex hull covers."""
+    import cv2
+
+    if len(px) < 3:
+        return 0.0
+    hull = cv2.convexHull(px.astype(np.float32))
+    return float(cv2.contourArea(hull)) / (shape[0] * shape[1])
