@@ -69,7 +69,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="253"/>
+        <location filename="../plugin/autogeoref.py" line="258"/>
         <source>Auto-georeference</source>
         <translation type="unfinished"></translation>
     </message>
@@ -119,22 +119,22 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="232"/>
+        <location filename="../plugin/autogeoref.py" line="237"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="240"/>
+        <location filename="../plugin/autogeoref.py" line="245"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="242"/>
+        <location filename="../plugin/autogeoref.py" line="247"/>
         <source>Choose an output folder.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="245"/>
+        <location filename="../plugin/autogeoref.py" line="250"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -274,38 +274,48 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="187"/>
+        <location filename="../plugin/autogeoref.py" line="190"/>
         <source>The sheet&apos;s projection: the results are in it (sheets rarely print it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="188"/>
+        <location filename="../plugin/autogeoref.py" line="191"/>
         <source>CRS of the sheet</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="190"/>
+        <location filename="../plugin/autogeoref.py" line="193"/>
         <source>GCP points (*.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="194"/>
+        <location filename="../plugin/autogeoref.py" line="198"/>
         <source>Hints (.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="235"/>
+        <location filename="../plugin/autogeoref.py" line="240"/>
         <source>Choose the CRS of the sheet, or a reference layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="191"/>
+        <location filename="../plugin/autogeoref.py" line="195"/>
         <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points; empty: the labels printed in the sheet&apos;s margins are read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="237"/>
+        <location filename="../plugin/autogeoref.py" line="242"/>
         <source>The hints file does not exist: choose the GCP points (.points) saved in the Georeferencer, or leave it empty to have the sheet&apos;s printed labels read.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="188"/>
+        <source>choose the sheet&apos;s projection</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="194"/>
+        <source>empty: the coordinates printed in the margins are read</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

@@ -94,7 +94,7 @@
         <translation>{}، رستر «{}» را باز کنید (پرونده ◂ باز کردن رستر…)، سپس پرونده ◂ بارگذاری نقاط کنترل… و مسیر پروندهٔ نقاط کنترل را که اکنون در حافظهٔ موقت است بچسبانید: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="253"/>
+        <location filename="../plugin/autogeoref.py" line="258"/>
         <source>Auto-georeference</source>
         <translation>زمین‌مرجع‌سازی خودکار</translation>
     </message>
@@ -154,22 +154,22 @@
         <translation>اجرا</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="232"/>
+        <location filename="../plugin/autogeoref.py" line="237"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation>رستری را که باید زمین‌مرجع شود انتخاب کنید (نخست آن را به پروژه بیفزایید).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="240"/>
+        <location filename="../plugin/autogeoref.py" line="245"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation>لایهٔ مرجعی جز هدف انتخاب کنید: یک نقشهٔ پایه یا رستری زمین‌مرجع.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="242"/>
+        <location filename="../plugin/autogeoref.py" line="247"/>
         <source>Choose an output folder.</source>
         <translation>یک پوشهٔ خروجی انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="245"/>
+        <location filename="../plugin/autogeoref.py" line="250"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation>«{}» زمین‌مرجع ندارد: محدودهٔ جست‌وجو را روشن کنید (به‌طور پیش‌فرض محدودهٔ بوم نقشه) تا همتا بداند در «{}» کجا را بجوید.</translation>
     </message>
@@ -349,17 +349,17 @@
         <translation>با شبکهٔ خود برگه (بدون لایهٔ مرجع)</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="187"/>
+        <location filename="../plugin/autogeoref.py" line="190"/>
         <source>The sheet&apos;s projection: the results are in it (sheets rarely print it).</source>
         <translation>تصویر نقشهٔ برگه: نتایج در آن است (برگه‌ها به‌ندرت آن را چاپ می‌کنند).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="188"/>
+        <location filename="../plugin/autogeoref.py" line="191"/>
         <source>CRS of the sheet</source>
         <translation>CRS برگه</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="190"/>
+        <location filename="../plugin/autogeoref.py" line="193"/>
         <source>GCP points (*.points)</source>
         <translation>نقاط کنترل (*.points)</translation>
     </message>
@@ -369,12 +369,12 @@
         <translation type="obsolete">دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز گذاشته شده‌اند، با مختصاتی که چاپ شده، ذخیره‌شده به‌صورت نقاط کنترل.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="194"/>
+        <location filename="../plugin/autogeoref.py" line="198"/>
         <source>Hints (.points)</source>
         <translation>راهنماها (.points)</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="235"/>
+        <location filename="../plugin/autogeoref.py" line="240"/>
         <source>Choose the CRS of the sheet, or a reference layer.</source>
         <translation>CRS برگه یا یک لایهٔ مرجع را انتخاب کنید.</translation>
     </message>
@@ -384,14 +384,24 @@
         <translation type="obsolete">راهنماها را انتخاب کنید: دو یا سه تقاطع که در زمین‌مرجع‌ساز با مختصاتشان گذاشته و به‌صورت نقاط کنترل (.points) ذخیره شده‌اند؛ یا یک لایهٔ مرجع انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="191"/>
+        <location filename="../plugin/autogeoref.py" line="195"/>
         <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points; empty: the labels printed in the sheet&apos;s margins are read.</source>
         <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز با مختصاتی که چاپ شده گذاشته و به‌صورت نقاط کنترل ذخیره شده‌اند؛ خالی: برچسب‌های چاپ‌شده در حاشیهٔ برگه خوانده می‌شوند.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="237"/>
+        <location filename="../plugin/autogeoref.py" line="242"/>
         <source>The hints file does not exist: choose the GCP points (.points) saved in the Georeferencer, or leave it empty to have the sheet&apos;s printed labels read.</source>
         <translation>پروندهٔ راهنماها وجود ندارد: نقاط کنترل (.points) ذخیره‌شده در زمین‌مرجع‌ساز را انتخاب کنید، یا خالی بگذارید تا برچسب‌های چاپ‌شدهٔ برگه خوانده شوند.</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="188"/>
+        <source>choose the sheet&apos;s projection</source>
+        <translation>تصویر نقشهٔ برگه را انتخاب کنید</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="194"/>
+        <source>empty: the coordinates printed in the margins are read</source>
+        <translation>خالی: مختصات چاپ‌شده در حاشیه خوانده می‌شود</translation>
     </message>
 </context>
 <context>

@@ -184,10 +184,14 @@ class AutoGeoreferenceDialog(QDialog):
         self.sheet = QGroupBox(tr("By the sheet's own grid (no reference layer)"), self)
         form = QFormLayout(self.sheet)
         self.sheet_crs = QgsProjectionSelectionWidget(self.sheet)
+        self.sheet_crs.setOptionVisible(QgsProjectionSelectionWidget.CrsNotSet, True)
+        self.sheet_crs.setNotSetText(tr("choose the sheet's projection"))
+        self.sheet_crs.setCrs(QgsCoordinateReferenceSystem())
         self.sheet_crs.setToolTip(tr("The sheet's projection: the results are in it (sheets rarely print it)."))
         form.addRow(tr("CRS of the sheet"), self.sheet_crs)
         self.hints = QgsFileWidget(self.sheet)
         self.hints.setFilter(tr("GCP points (*.points)"))
+        self.hints.lineEdit().setPlaceholderText(tr("empty: the coordinates printed in the margins are read"))
         self.hints.setToolTip(tr("Two or three crossings of the printed lines placed roughly in the Georeferencer "
                                  "with their coordinates as printed, saved as GCP points; empty: the labels printed "
                                  "in the sheet's margins are read."))
@@ -199,6 +203,7 @@ class AutoGeoreferenceDialog(QDialog):
         target (``<raster>.points``) where there is one."""
         self.sheet.setVisible(layer is None)
         self.area.setVisible(layer is not None)
+        self.local.setVisible(layer is not None)  # a sheet's paper is followed by the model the check chooses
         target = self.target.currentLayer()
         if layer is None and target is not None and not self.hints.filePath():
             saved = target.source() + ".points"
@@ -261,7 +266,8 @@ class AutoGeoreferenceDialog(QDialog):
         target, reference = self.target.currentLayer(), self.reference.currentLayer()
         extent = self.extent() if reference is not None else None
         ignore = extent is not None and is_georeferenced(target.source())  # the user chose where to look
-        options = RegisterOptions(model=self.model.currentData(), local=self.local.isChecked(), extent=extent,
+        local = self.local.isChecked() and reference is not None
+        options = RegisterOptions(model=self.model.currentData(), local=local, extent=extent,
                                   target_georef="ignore" if ignore else "auto")
         grid = None
         if reference is None:
