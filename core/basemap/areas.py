@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 
+from ..scratch import process_folder
 from .coverage import Coverage, finest_zoom, remembered_finest
 from .fetch import Fetcher, ServiceError
 from .services import TileService
@@ -28,7 +29,7 @@ class AreaReader:
         self.service, self.fetcher, self.budget = service, fetcher, budget
         self.zooms, self.planned, self.read_before = [], 0, set()
         self.finest, self.known, self.coverage = service.zmax, None, None
-        self.folder = fetcher.folder("areas") or _temporary()
+        self.folder = fetcher.folder("areas") or process_folder("hamta-areas-")
 
     def read(self, bounds, z: int, monitor) -> str:
         """The GeoTIFF of ``bounds`` at zoom ``z``, or at the layer's finest zoom where ``z`` is finer.
@@ -128,14 +129,3 @@ def _range_key(tiles, wanted):
 
 def _count(tiles, wanted) -> int:
     return tiles.count if wanted is None else int(wanted.sum())
-
-
-def _temporary() -> str:
-    """A private folder of this process, removed at exit (areas read without a disk cache)."""
-    import atexit
-    import shutil
-    import tempfile
-
-    folder = tempfile.mkdtemp(prefix="hamta-areas-")
-    atexit.register(shutil.rmtree, folder, True)
-    return folder

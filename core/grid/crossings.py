@@ -43,21 +43,36 @@ def _loo(found, order) -> float:
     return float(np.sqrt(np.mean(np.square(errors))))
 
 
-def held_out_lines(found, order):
-    """(RMS in scan px, (n, 2) error of each crossing, {(axis, value): RMS of that line}) of each crossing
-    predicted by the model fitted without its grid line: each line of constant grid x left out in turn, and
-    each of constant grid y (a crossing's error is the larger of its two). A line taken on the sheet's frame
-    or a border, shifted as a whole, fits with the others crossing by crossing but not as a line."""
-    errors, per_line = np.zeros((len(found), 2)), {}
-    for axis in (4, 5):
-        for value in np.unique(found[:, axis]):
-            on = found[:, axis] == value
-            if (~on).sum() <= MODELS[order - 1][2]:
-                return math.inf, np.full((len(found), 2), np.inf), {}
-            e = apply_poly(fit_poly(found[~on, 2:4], found[~on, :2], order), found[on, 2:4]) - found[on, :2]
+def lines_held_out(src, dst, lines, predictor, least: int):
+    """((n, 2) error of each point of ``dst`` predicted from ``src`` by ``predictor(src, dst)`` (a callable
+    src -> dst) fitted without its grid line, {(axis, value): RMS of that line}): each line of constant grid x
+    (``lines[:, 0]``) left out in turn, and each of constant grid y; a point's error is the larger of its
+    two. Infinite errors and no lines where fewer than ``least`` points would be left."""
+    errors, per_line = np.zeros((len(src), 2)), {}
+    for axis in (0, 1):
+        for value in np.unique(lines[:, axis]):
+            on = lines[:, axis] == value
+            if (~on).sum() <= least:
+                return np.full((len(src), 2), np.inf), {}
+            e = predictor(src[~on], dst[~on])(src[on]) - dst[on]
             per_line[(axis, value)] = float(np.sqrt(np.mean(np.sum(e ** 2, axis=1))))
             worse = np.hypot(*e.T) > np.hypot(*errors[on].T)
             errors[np.flatnonzero(on)[worse]] = e[worse]
+    return errors, per_line
+
+
+def held_out_lines(found, order):
+    """(RMS in scan px, (n, 2) error of each crossing, {(axis, value): RMS of that line}) of each crossing
+    predicted from its crs coordinates by the polynomial of ``order`` fitted without its grid line (see
+    :func:`lines_held_out`). A line taken on the sheet's frame or a border, shifted as a whole, fits with the
+    others crossing by crossing but not as a line."""
+    def predictor(src, dst):
+        coef = fit_poly(src, dst, order)
+        return lambda xy: apply_poly(coef, xy)
+
+    errors, per_line = lines_held_out(found[:, 2:4], found[:, :2], found[:, 4:6], predictor, MODELS[order - 1][2])
+    if not per_line:
+        return math.inf, errors, {}
     return float(np.sqrt(np.mean(np.sum(errors ** 2, axis=1)))), errors, per_line
 
 

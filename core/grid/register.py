@@ -29,7 +29,9 @@ from ..options import RegisterOptions
 from ..outcome import Stats, Timings
 from ..progress import Monitor
 from ..result import Gcp, RegistrationResult, peak_rss_mb
+from ..scratch import process_folder
 from ..verify import Verification
+from .crossings import lines_held_out
 from .scan import LineSource
 from .sheet import SheetFit, fit_sheet
 
@@ -227,20 +229,11 @@ def _model_by_check(asked: Optional[str], fit: SheetFit, scan_px, frame_px, info
 
 def held_out_lines(kind: str, scan_px, frame_px, lines) -> np.ndarray:
     """(n, 2) frame px: each crossing's error under the model ``kind`` (scan px -> frame px) fitted without its
-    grid line, the larger of its two lines' (``lines``: each crossing's grid x and y); infinite where too few
-    crossings are left."""
+    grid line (:func:`hamta.core.grid.crossings.lines_held_out`; ``lines``: each crossing's grid x and y)."""
     from ..estimation.models import MIN_POINTS, fit_model
 
-    errors = np.zeros((len(scan_px), 2))
-    for axis in (0, 1):
-        for value in np.unique(lines[:, axis]):
-            on = lines[:, axis] == value
-            if (~on).sum() <= MIN_POINTS[kind]:
-                return np.full((len(scan_px), 2), np.inf)
-            e = fit_model(kind, scan_px[~on], frame_px[~on]).apply(scan_px[on]) - frame_px[on]
-            worse = np.hypot(*e.T) > np.hypot(*errors[on].T)
-            errors[np.flatnonzero(on)[worse]] = e[worse]
-    return errors
+    return lines_held_out(scan_px, frame_px, lines, lambda src, dst: fit_model(kind, src, dst).apply,
+                          MIN_POINTS[kind])[0]
 
 
 def _frame_per_scan(model, info) -> float:
@@ -310,24 +303,9 @@ def _frame(info, fit: SheetFit, frame_crs, grid_crs: str):
             px = px[np.all(np.isfinite(px), axis=1)]
             if len(px) > 1:
                 cv2.polylines(image, [np.round(px * 4).astype(np.int32)], False, 40, 1, cv2.LINE_AA, shift=2)
-    path = os.path.join(_folder(), f"grid-frame-{os.getpid()}-{time.monotonic_ns()}.tif")
+    path = os.path.join(process_folder("hamta-grid-"), "frame.tif")
     with rasterio.open(path, "w", driver="GTiff", width=width, height=height, count=1, dtype="uint8",
                        crs=rasterio.crs.CRS.from_wkt(frame_crs.to_wkt()), transform=transform,
                        compress="deflate", tiled=True) as dst:
         dst.write(image, 1)
     return open_raster(path, "reference")
-
-
-_FOLDER = []
-
-
-def _folder() -> str:
-    """A private folder of this process, removed at exit."""
-    if not _FOLDER:
-        import atexit
-        import shutil
-        import tempfile
-
-        _FOLDER.append(tempfile.mkdtemp(prefix="hamta-grid-"))
-        atexit.register(shutil.rmtree, _FOLDER[0], True)
-    return _FOLDER[0]

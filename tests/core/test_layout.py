@@ -153,7 +153,7 @@ def test_lint_passes_in_a_clone_named_hamta(tmp_path):
 LAYERS = (
     ("core.version", "core.errors", "core.coords", "core.types", "core.outcome", "core.text"),
     ("core.extent",),
-    ("core.options", "core.progress", "core.memory", "core.blas", "core.fourier"),
+    ("core.options", "core.progress", "core.memory", "core.blas", "core.fourier", "core.scratch"),
     ("core.parallel",),
     ("core.io", "core.preprocess", "core.detectors", "core.estimation", "core.basemap"),
     ("core.descriptors",),
