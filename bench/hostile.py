@@ -17,7 +17,8 @@ import time
 import zlib
 from urllib.parse import parse_qsl, urlsplit
 
-HALF_WORLD = 20037508.342789244
+from ..core.basemap.services import HALF_WORLD
+
 SECRET = "SECRET-Do-Not-Print"
 
 

@@ -25,7 +25,7 @@ from typing import Optional
 import cv2
 import numpy as np
 
-from ..core.descriptors.cfog import cfog
+from ..core.similarity.cfog import cfog
 
 REFINE_DEG = 2.5
 STEP_DEG = 0.1

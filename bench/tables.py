@@ -137,6 +137,11 @@ def markdown(report: dict) -> str:
     return "\n".join(out) + "\n"
 
 
+def cell(value, fmt: str) -> str:
+    """``value`` formatted with ``fmt`` for a table, '–' for None."""
+    return "–" if value is None else format(value, fmt)
+
+
 def _fmt_cell(v) -> str:
     if v is None or (isinstance(v, float) and math.isnan(v)):
         return "–"

@@ -33,7 +33,7 @@ from affine import Affine
 from rasterio.errors import NotGeoreferencedWarning
 from rasterio.warp import Resampling, reproject
 
-HALF_WORLD = 20037508.342789244
+from ..core.basemap.services import HALF_WORLD
 
 
 class TileServer:
@@ -51,7 +51,7 @@ class TileServer:
             self._valid = ds.read_masks(1) > 0
             self._transform, self._crs = ds.transform, ds.crs
         grey = cv2.cvtColor(np.ascontiguousarray(np.moveaxis(self._bands, 0, 2)), cv2.COLOR_RGB2GRAY)
-        self._levels = np.percentile(grey[self._valid], [35, 65, 85])  # map classes of about equal share
+        self.levels = np.percentile(grey[self._valid], [35, 65, 85])  # map classes of about equal share
         self._server = None
 
     @property
@@ -150,7 +150,7 @@ class TileServer:
             return None
         image = np.moveaxis(rgb, 0, 2)
         if style == "map":
-            image = map_style(image, self._levels)
+            image = map_style(image, self.levels)
         rgba = np.dstack([image[:, :, ::-1], mask * 255])
         ok, png = cv2.imencode(".png", rgba)
         return png.tobytes()

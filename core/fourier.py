@@ -5,8 +5,8 @@ import costs a command-line run 0.13-0.2 s on current wheels (scipy 1.17 loads i
 ``scipy.special`` with it). There, the complex transforms (phase congruency's) are OpenCV's DFT: as accurate as
 numpy's complex64 transforms (6e-8 from double precision on unit-sized values) and 2-3.5 times as fast as
 numpy 2.4's at the sizes phase congruency takes (226-384 px), about 0.5 s less processor time per cross-modal
-run (docs/benchmarks.md, tenth round); the real transforms over channel stacks (the pose check's) are numpy's,
-which keep float32 and complex64.
+run (measured on the commit that made this module); the real transforms over channel stacks (the pose
+check's) are numpy's, which keep float32 and complex64.
 
 numpy 1.x computes every FFT in double precision, twice as slow as scipy's here, and Debian's OpenCV 4.6 DFT is
 three times slower than the wheels' OpenCV 5 (scipy's on two threads is faster than either), so the interpreter

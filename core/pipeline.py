@@ -87,14 +87,21 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
     if method == AUTO:
         if params:
             raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
-        def attempt(name, p, mon, refine):
-            step_options = options if options.refine != "auto" else dataclasses.replace(options, refine=refine)
-            return match_and_fit(inputs, name, p, step_options, mon, map_chunks)
-
-        return _unplaced(register_auto(attempt, options, rest, chain_for(inputs.plan.mode, short)), placed, target)
+        return _unplaced(_register_by_auto(inputs, options, rest, map_chunks, short), placed, target)
     params = get_method(method).make_params(params)  # a wrong name or parameter is the caller's, not a crash
     with method_crashes(method):
         return _unplaced(match_and_fit(inputs, method, params, options, rest, map_chunks), placed, target)
+
+
+def _register_by_auto(inputs: Inputs, options: RegisterOptions, monitor: Monitor, map_chunks, short: bool
+                      ) -> RegistrationResult:
+    """'auto' on the rasters read: each attempt is :func:`match_and_fit` with one method of its chain, refined as
+    the attempt asks unless ``options.refine`` says how."""
+    def attempt(name, p, mon, refine):
+        step_options = options if options.refine != "auto" else dataclasses.replace(options, refine=refine)
+        return match_and_fit(inputs, name, p, step_options, mon, map_chunks)
+
+    return register_auto(attempt, options, monitor, chain_for(inputs.plan.mode, short))
 
 
 def _unplaced(result: RegistrationResult, placed, target) -> RegistrationResult:
@@ -155,34 +162,19 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
     params = spec.make_params(params)
     model_left_open = options.model is None and not options.local
     options = resolve_options(options, spec)
-    tgt, ref = inputs.target_image, inputs.reference_image
-    matches = spec.match(tgt, ref, params, monitor.span(0.0, 0.65), seed=options.seed)
+    matches = spec.match(inputs.target_image, inputs.reference_image, params, monitor.span(0.0, 0.65),
+                         seed=options.seed)
     clock.lap("match")
-    rules = RobustRules.for_run(options.model, options, spec.name, inputs.target.path)
-    threshold = options.ransac_threshold_px * ref.source_px_per_working_px
-    first = robust_linear(Correspondences.from_matches(matches, tgt, ref), threshold, rules)
-    clock.lap("estimate")
-    monitor.report(0.7, "refining")
-
-    estimate, notes = refine_estimate(first, spec, options.refine, options.ransac_threshold_px, tgt, ref, rules,
-                                      monitor.span(0.7, 0.85))
-    clock.lap("refine")
+    first, estimate, notes = _estimate(matches, inputs, spec, options, monitor, clock)
     monitor.report(0.85, "fitting")
-    frame = crs_frame(inputs.plan, inputs.target, inputs.reference)
-    fit = final_fit(options.model, estimate, options.max_gcps, frame)
-    bent = None if not model_left_open else bent_fit(options.model, fit, estimate, inputs.target.width,
-                                                     inputs.target.height, options.tolerance_px, options.max_gcps,
-                                                     frame)
+    fit, bent = _fits(estimate, inputs, options, model_left_open)
     clock.lap("fit")
     grid = None
     check = VerifyParams(tolerance_px=options.tolerance_px)
     verification = None
     if options.local:
-        local_fit, grid = local_correction(estimate, inputs.target, inputs.target_bands, inputs.reference,
-                                           inputs.reference_bands, local_params(options, spec.refinement.similarity),
-                                           spec.refinement.similarity, monitor.span(0.85, 0.9), map_chunks)
-        clock.lap("local")
-        fit, grid, verification, note = keep_local(fit, local_fit, grid, inputs, check, monitor.span(0.9, 1.0))
+        fit, grid, verification, note = _local_kept(fit, estimate, inputs, spec, options, check, monitor, map_chunks,
+                                                    clock)
         notes += [note] if note else []
     if verification is None:
         verification = checked(fit.model, inputs, check, monitor.span(0.9, 0.95 if bent else 1.0))
@@ -202,6 +194,44 @@ def match_and_fit(inputs: Inputs, method: str, params, options: RegisterOptions,
         stats=make_stats(matches, first.points, fit), timings=timings, notes=list(inputs.plan.notes) + notes,
         diagnostics=dict(matches.diagnostics or {}), correspondences=first.points, verification=verification,
         local=grid)
+
+
+def _estimate(matches, inputs: Inputs, spec, options: RegisterOptions, monitor: Monitor, clock: Clock):
+    """(first, estimate, notes) from the method's ``matches``: the linear model their outliers were rejected
+    with, then that estimate refined at full resolution as ``options.refine`` says, and the refinement's notes."""
+    tgt, ref = inputs.target_image, inputs.reference_image
+    rules = RobustRules.for_run(options.model, options, spec.name, inputs.target.path)
+    threshold = options.ransac_threshold_px * ref.source_px_per_working_px
+    first = robust_linear(Correspondences.from_matches(matches, tgt, ref), threshold, rules)
+    clock.lap("estimate")
+    monitor.report(0.7, "refining")
+    estimate, notes = refine_estimate(first, spec, options.refine, options.ransac_threshold_px, tgt, ref, rules,
+                                      monitor.span(0.7, 0.85))
+    clock.lap("refine")
+    return first, estimate, notes
+
+
+def _fits(estimate, inputs: Inputs, options: RegisterOptions, model_left_open: bool):
+    """(fit, bent): the requested model fitted on the estimate's inliers, and where the model was left open the
+    higher-order fit to check against it (else None)."""
+    frame = crs_frame(inputs.plan, inputs.target, inputs.reference)
+    fit = final_fit(options.model, estimate, options.max_gcps, frame)
+    bent = None if not model_left_open else bent_fit(options.model, fit, estimate, inputs.target.width,
+                                                     inputs.target.height, options.tolerance_px, options.max_gcps,
+                                                     frame)
+    return fit, bent
+
+
+def _local_kept(fit, estimate, inputs: Inputs, spec, options: RegisterOptions, check: VerifyParams,
+                monitor: Monitor, map_chunks, clock: Clock):
+    """The local correction measured around ``estimate``, then :func:`keep_local` between it and the global
+    ``fit``: (fit, grid, verification, note)."""
+    similarity = spec.refinement.similarity
+    local_fit, grid = local_correction(estimate, inputs.target, inputs.target_bands, inputs.reference,
+                                       inputs.reference_bands, local_params(options, similarity), similarity,
+                                       monitor.span(0.85, 0.9), map_chunks)
+    clock.lap("local")
+    return keep_local(fit, local_fit, grid, inputs, check, monitor.span(0.9, 1.0))
 
 
 def keep_local(global_fit, local_fit, grid, inputs: Inputs, check: VerifyParams, monitor: Monitor):

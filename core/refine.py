@@ -20,7 +20,7 @@ import numpy as np
 from rasterio.windows import Window
 
 from .coords import as_xy, xy_bounds
-from .descriptors.cfog import cfog, ncc_surface, peak_offset
+from .descriptors.cfog import ncc_surface
 from .errors import InsufficientMatchesError
 from .estimation.models import LinearModel
 from .estimation.robust import Estimate, RobustRules, robust_linear
@@ -29,6 +29,8 @@ from .io.raster import RasterInfo
 from .io.windows import WindowReader
 from .parallel import threaded
 from .progress import Monitor
+from .similarity.cfog import cfog
+from .similarity.peak import peak_offset
 from .types import Correspondences
 
 
@@ -54,7 +56,7 @@ class RefineParams:
         (templates then line up better where the first model was off by a few pixels).
     similarity : {'ncc', 'cfog'}
         Correlation of intensities, or of CFOG structural descriptors (for images of different
-        modality, see :mod:`hamta.core.descriptors.cfog`).
+        modality, see :mod:`hamta.core.similarity.cfog`).
     """
 
     template_px: int = 31

@@ -42,12 +42,12 @@ from functools import partial
 import numpy as np
 from affine import Affine
 
-from .basemap.areas import AreaReader
+from .basemap.areas import AreaReader, mask_outside
 from .basemap.fetch import Fetcher
 from .basemap.services import TileService
 from .basemap.tiles import NoTiles
-from .basemap.zooms import pixel_text, search_bounds, search_zooms, size_text, zoom_in_budget
-from .coords import map_to_pixel, pixel_to_map, raster_outline
+from .basemap.zooms import padded, pixel_text, search_bounds, search_zooms, size_text, zoom_in_budget
+from .coords import pixel_to_map, raster_outline
 from .errors import HamtaError, InputError, InsufficientMatchesError, NoOverlapError, RegistrationCanceled
 from .io.raster import open_raster, read_image
 from .io.working import footprint
@@ -90,7 +90,7 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
     notes, places = [], []
     if not searching:
         poly = _footprint(info, service.crs)
-        bounds = _padded(poly.bounds, FOOTPRINT_MARGIN)
+        bounds = padded(poly.bounds, FOOTPRINT_MARGIN)
         pixel_size = math.sqrt(poly.area / (info.width * info.height))
         z = zoom_in_budget(service, bounds, pixel_size, options.max_working_pixels)
         result = register_onto(reader.read(bounds, z, monitor.span(0.0, 0.15)), monitor.span(0.15, 1.0))
@@ -115,20 +115,13 @@ def uses_georeferencing(info, options: RegisterOptions) -> bool:
 
 def footprint_bounds(info, crs: str):
     """The bounds of the target's footprint in ``crs`` plus :data:`FOOTPRINT_MARGIN` each way (map units)."""
-    return _padded(_footprint(info, crs).bounds, FOOTPRINT_MARGIN)
+    return padded(_footprint(info, crs).bounds, FOOTPRINT_MARGIN)
 
 
 def _footprint(info, crs: str):
     from rasterio.crs import CRS
 
     return footprint(info, CRS.from_user_input(crs))
-
-
-def _padded(bounds, margin: float):
-    """``bounds`` widened by ``margin`` of their larger side each way."""
-    x0, y0, x1, y1 = bounds
-    pad = margin * max(x1 - x0, y1 - y0)
-    return x0 - pad, y0 - pad, x1 + pad, y1 + pad
 
 
 SEARCH_REQUESTS = 400  # the requests a search may send (the fetcher's own cap, when lower, rules)
@@ -142,105 +135,143 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
     no model, a read area that misses, the requests spent) is that place's outcome: ``places`` gets one
     record per place tried ({found_by, zoom, outcome}) and ``notes`` a line each; only the first area
     read, the user's search area itself, ends the run with an error."""
-    service = reader.service
-    bounds = search_bounds(options.extent, service)
-    target, per_px, (grey, grey_valid) = target_features(info, options.target_band)
-    learned = learned_target_features(grey, grey_valid)
-    zooms = search_zooms(service, bounds)
-    deadline = time.monotonic() + options.auto_budget_s
-
-    def budgeted():
-        """The options of one place: what is left of the run's time budget."""
-        return dataclasses.replace(options, auto_budget_s=max(0.0, deadline - time.monotonic()))
-
-    def ahead(label, parts_left):
-        """The part of the bar from where the search stands in its time budget to a share of what is left,
-        its messages labelled (the bar moves on while places are tried, whatever their number)."""
-        start = min(0.9, 1.0 - (deadline - time.monotonic()) / max(options.auto_budget_s, 1e-3))
-        return monitor.span(start, start + (1.0 - start) / max(1, parts_left)).labelled(label)
-
-    def tried(found_by, z, outcome):
-        places.append({"found_by": found_by, "zoom": z, "outcome": outcome})
-        notes.append(f"{found_by}, read at zoom {z}: {outcome}")
-
-    best, placed_at, searched, whole_tried = None, [], [], False
-    spent = f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried"
+    bounds = search_bounds(options.extent, reader.service)
+    features = target_features(info, options.target_band)
+    learned = learned_target_features(*features[2])
+    zooms = search_zooms(reader.service, bounds)
+    search = _Search(info, reader, options, monitor, register_onto, bounds, notes, places)
     for i, z in enumerate(zooms):
-        if time.monotonic() > deadline:  # a finer zoom costs its tiles and its locating before any place
-            notes.extend([spent] if spent not in notes else [])
+        if time.monotonic() > search.deadline:  # a finer zoom costs its tiles and its locating before any place
+            notes.extend([search.spent] if search.spent not in notes else [])
             break
-        span = ahead(f"zoom {z}", len(zooms) - i + MAX_PLACES - len(placed_at))
-        if searched:
-            cost = reader.cost(bounds, z)
-            if reader.planned + cost + PLACE_RESERVE > reader.budget:
-                notes.append(f"zoom {reader.zoom_for(bounds, z)} was not searched: its {cost} tiles would leave too "
-                             f"few of the {reader.budget} requests a search may send for the places")
-                break
+        span = search.ahead(f"zoom {z}", len(zooms) - i + MAX_PLACES - len(search.placed_at))
+        if search.searched and search.leaves_too_few_requests(z):
+            break
         try:
             path = reader.read(bounds, z, span.span(0.0, 0.3))
         except RegistrationCanceled:
             raise
         except HamtaError as exc:
-            if not searched:
+            if not search.searched:
                 raise
             notes.append(f"zoom {z} was not searched: {reader.plain(exc)}")
             continue
         z = reader.zooms[-1]
-        if z in searched:  # the layer's finest zoom was reached: this one was searched already
+        if z in search.searched:  # the layer's finest zoom was reached: this one was searched already
             continue
-        searched.append(z)
+        search.searched.append(z)
         span.report(0.3, "locating the target")
+        search.try_places(path, z, features, learned)
+        if search.best is not None and search.best[0].verified:
+            return search.best
+    if search.best is None:
+        raise search.not_found() from None
+    return search.best
+
+
+class _Search:
+    """What one search has done so far: the zooms searched, the places tried, the best result and zoom, and
+    when its time budget ends."""
+
+    def __init__(self, info, reader: AreaReader, options: RegisterOptions, monitor: Monitor, register_onto, bounds,
+                 notes, places):
+        self.info, self.reader, self.options, self.monitor = info, reader, options, monitor
+        self.register_onto, self.bounds, self.notes, self.places = register_onto, bounds, notes, places
+        self.deadline = time.monotonic() + options.auto_budget_s
+        self.spent = f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried"
+        self.best, self.placed_at, self.searched, self.whole_tried = None, [], [], False
+
+    def budgeted(self) -> RegisterOptions:
+        """The options of one place: what is left of the run's time budget."""
+        return dataclasses.replace(self.options, auto_budget_s=max(0.0, self.deadline - time.monotonic()))
+
+    def ahead(self, label, parts_left):
+        """The part of the bar from where the search stands in its time budget to a share of what is left,
+        its messages labelled (the bar moves on while places are tried, whatever their number)."""
+        start = min(0.9, 1.0 - (self.deadline - time.monotonic()) / max(self.options.auto_budget_s, 1e-3))
+        return self.monitor.span(start, start + (1.0 - start) / max(1, parts_left)).labelled(label)
+
+    def tried(self, found_by, z, outcome) -> None:
+        """Record what became of the place ``found_by``, read at zoom ``z``, in ``places`` and ``notes``."""
+        self.places.append({"found_by": found_by, "zoom": z, "outcome": outcome})
+        self.notes.append(f"{found_by}, read at zoom {z}: {outcome}")
+
+    def leaves_too_few_requests(self, z: int) -> bool:
+        """Whether reading the area at zoom ``z`` would leave too few requests for the places (noted)."""
+        reader = self.reader
+        cost = reader.cost(self.bounds, z)
+        if reader.planned + cost + PLACE_RESERVE <= reader.budget:
+            return False
+        self.notes.append(f"zoom {reader.zoom_for(self.bounds, z)} was not searched: its {cost} tiles would leave "
+                          f"too few of the {reader.budget} requests a search may send for the places")
+        return True
+
+    def try_places(self, path: str, z: int, features, learned) -> None:
+        """Register the target at each place located in the area file ``path`` (read at zoom ``z``) until one
+        verifies, and onto the whole area the first time; ``features``, ``learned``: the target's."""
+        target, per_px, (grey, grey_valid) = features
         area = open_raster(path, "reference")
         image, valid = read_image(area, (1, 2, 3))
-        _outside(valid, area.transform, bounds)
-        count = len(places)
-        side = max(bounds[2] - bounds[0], bounds[3] - bounds[1]) / service.resolution(z)
+        mask_outside(valid, area.transform, self.bounds)
+        count = len(self.places)
+        side = max(self.bounds[2] - self.bounds[0], self.bounds[3] - self.bounds[1]) / self.reader.service.resolution(z)
+        searched = self.searched
         structure = grey, grey_valid, structure_sides(side, 2.0 ** (z - searched[-2]) if len(searched) > 1 else None)
-        for found_by, c in candidates(target, learned, image, valid, not whole_tried, structure):
-            if time.monotonic() > deadline:
-                notes.append(spent)
+        for found_by, c in candidates(target, learned, image, valid, not self.whole_tried, structure):
+            if time.monotonic() > self.deadline:
+                self.notes.append(self.spent)
                 break
-            if c is None:
-                whole_tried = True
-                what = f"the whole area at zoom {z}"
-                attempt, label = partial(_register_whole_area, info, reader, bounds, z), "the whole area"
-            else:
-                placed = area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
-                if seen(placed, info.width, info.height, placed_at) or len(placed_at) >= MAX_PLACES:
-                    continue
-                placed_at.append(placed)
-                what = (f"a place {found_by} features found at zoom {z} ({c.inliers} agreeing)" if c.inliers else
-                        f"a place the target's structure matched at zoom {z} (score {c.score:.1f})")
-                attempt, label = partial(_register_placed, info, reader, placed, bounds), f"place {len(placed_at)}"
+            placed = None if c is None else area.transform * Affine(*c.matrix.ravel()) * Affine.scale(per_px)
+            attempt = self.attempt(found_by, c, z, placed)
+            if attempt is None:
+                continue
+            what, register_there, label = attempt
             try:
-                result, z_fine = attempt(budgeted(), register_onto, ahead(label, MAX_PLACES + 1 - len(placed_at)))
+                result, z_fine = register_there(self.budgeted(), self.register_onto,
+                                                self.ahead(label, MAX_PLACES + 1 - len(self.placed_at)))
             except RegistrationCanceled:
                 raise
             except HamtaError as exc:
-                tried(what, *((exc.zoom, str(exc)) if isinstance(exc, _PlaceFailed) else (z, _failure(reader, exc))))
+                self.tried(what, *((exc.zoom, str(exc)) if isinstance(exc, _PlaceFailed) else
+                                   (z, _failure(self.reader, exc))))
                 continue
-            tried(what, z_fine, _checked(result))
-            if best is None or result_rank(result) > result_rank(best[0]):
-                best = result, z_fine
-            if best[0].verified:
+            self.tried(what, z_fine, _checked(result))
+            if self.best is None or result_rank(result) > result_rank(self.best[0]):
+                self.best = result, z_fine
+            if self.best[0].verified:
                 break
-        if len(places) == count:
-            notes.append(f"searched {size_text(bounds, service)} at zoom {z} ({pixel_text(service, z)} pixels): "
-                         "no place with enough agreeing features")
-        del image, valid
-        if best is not None and best[0].verified:
-            return best
-    if best is None:
-        raise InsufficientMatchesError(
-            f"The target raster '{info.path}' was not found in the search area ({size_text(bounds, service)}, "
+        if len(self.places) == count:
+            self.notes.append(f"searched {size_text(self.bounds, self.reader.service)} at zoom {z} "
+                              f"({pixel_text(self.reader.service, z)} pixels): no place with enough agreeing features")
+
+    def attempt(self, found_by, c, z: int, placed):
+        """(what, how to register there, its progress label) for candidate ``c`` found at zoom ``z`` (None: the
+        whole area; else ``placed``, target px -> map), or None for a place tried already or one too many."""
+        if c is None:
+            self.whole_tried = True
+            whole = partial(_register_whole_area, self.info, self.reader, self.bounds, z)
+            return f"the whole area at zoom {z}", whole, "the whole area"
+        if seen(placed, self.info.width, self.info.height, self.placed_at) or len(self.placed_at) >= MAX_PLACES:
+            return None
+        self.placed_at.append(placed)
+        what = (f"a place {found_by} features found at zoom {z} ({c.inliers} agreeing)" if c.inliers else
+                f"a place the target's structure matched at zoom {z} (score {c.score:.1f})")
+        register_there = partial(_register_placed, self.info, self.reader, placed, self.bounds)
+        return what, register_there, f"place {len(self.placed_at)}"
+
+    def not_found(self) -> InsufficientMatchesError:
+        """The error of a search that registered nothing: what was read and tried, and what may help."""
+        places, searched = self.places, self.searched
+        return InsufficientMatchesError(
+            f"The target raster '{self.info.path}' was not found in the search area "
+            f"({size_text(self.bounds, self.reader.service)}, "
             f"read at zoom{'s' if len(searched) > 1 else ''} {', '.join(map(str, searched))}): "
             + (f"none of the {len(places)} places tried registered ({_outcomes(places)}). " if places else
                "no place in it looked enough like the target. ")
-            + "".join(f"{n[0].upper()}{n[1:]}. " for n in notes if "was not searched" in n or n == spent)
+            + "".join(f"{n[0].upper()}{n[1:]}. " for n in self.notes if "was not searched" in n or n == self.spent)
             + "Zoom the map closer to where the target is (a search area a few times its size), and check that the "
               "area holds it; a target that is mirrored, or whose ground has mostly changed since, may not be found.",
-            0, MIN_INLIERS) from None
-    return best
+            0, MIN_INLIERS)
 
 
 class _PlaceFailed(HamtaError):
@@ -320,18 +351,6 @@ def _held_to_the_search(result):
                                                                         reasons=v.reasons + (reason,)))
 
 
-def _outside(valid: np.ndarray, transform, bounds) -> None:
-    """Mark the pixels of an area read as whole tiles that lie outside the search area ``bounds`` invalid:
-    a target is looked for where the user asked, not in the tiles' margins."""
-    (c0, r0), (c1, r1) = map_to_pixel(transform, np.array([[bounds[0], bounds[3]], [bounds[2], bounds[1]]]))
-    c0, r0 = max(0, int(math.floor(c0))), max(0, int(math.floor(r0)))
-    c1, r1 = int(math.ceil(c1)), int(math.ceil(r1))
-    valid[:r0] = False
-    valid[r1:] = False
-    valid[:, :c0] = False
-    valid[:, c1:] = False
-
-
 def _overlaps(result, info, bounds) -> bool:
     """Whether ``result`` puts the target's footprint over the search area at all (the search answers where
     the user asked: a target found beside the area, through the margin read around a place, is not taken)."""
@@ -349,7 +368,7 @@ def _register_placed(info, reader: AreaReader, placed, bounds, options: Register
     nearest its pixels; (result, zoom). Raises a :class:`HamtaError` when the place gives nothing: no data
     there, no model, or a model that puts the target outside the search area ``bounds``."""
     outline = pixel_to_map(placed, raster_outline(info.width, info.height, 9, ends=True))
-    around = _padded((*outline.min(axis=0), *outline.max(axis=0)), LOCATED_MARGIN)
+    around = padded((*outline.min(axis=0), *outline.max(axis=0)), LOCATED_MARGIN)
     pixel = math.sqrt(abs(placed.determinant))
     z = zoom_in_budget(reader.service, around, pixel, options.max_working_pixels)
     try:

@@ -33,11 +33,12 @@ from typing import Callable, Optional, Tuple
 
 import numpy as np
 
+from ...core.basemap.services import HALF_WORLD
 from ..study import Study
+from ..tables import cell
 
 SOURCE = os.path.join("landsat", "RGB.byte.tif")
 WRONG_PX = 3.0  # basemap pixels: a verified result beyond this is a confident wrong answer
-HALF_WORLD = 20037508.342789244
 
 
 @dataclass
@@ -50,15 +51,18 @@ class TargetCase:
     info: dict = field(default_factory=dict)
 
     def grid(self, n: int = 10) -> np.ndarray:
+        """An ``n`` x ``n`` grid of target pixel centres, (n * n, 2) x, y in target px."""
         h, w = self.shape
         gx, gy = np.meshgrid((np.arange(n) + 0.5) * w / n, (np.arange(n) + 0.5) * h / n)
         return np.column_stack([gx.ravel(), gy.ravel()])
 
     def outline(self) -> np.ndarray:
+        """The target's four corners in EPSG:3857 metres, (4, 2)."""
         h, w = self.shape
         return self.truth(np.array([[0, 0], [w, 0], [w, h], [0, h]], float))
 
     def footprint_area(self) -> float:
+        """The area of the target's footprint, in square EPSG:3857 metres."""
         x, y = self.outline().T
         return 0.5 * abs(np.dot(x, np.roll(y, 1)) - np.dot(y, np.roll(x, 1)))
 
@@ -89,6 +93,7 @@ def zoom_resolution(z: int) -> float:
 
 
 def _read_source(source: str):
+    """(RGB (h, w, 3) uint8, valid mask (h, w), geotransform, CRS) of the raster ``source``'s first three bands."""
     import rasterio
 
     with rasterio.open(source) as ds:
@@ -96,6 +101,7 @@ def _read_source(source: str):
 
 
 def _to_3857(crs):
+    """A pyproj transformer from ``crs`` to EPSG:3857 (x, y order)."""
     from pyproj import Transformer
 
     return Transformer.from_crs(crs, "EPSG:3857", always_xy=True)
@@ -125,7 +131,7 @@ def rotated_target(source: str, path: str, centre, shape, scale: float, angle_de
     if style == "map":
         from ..tileserver import TileServer
 
-        image = map_style(image, TileServer(source)._levels)
+        image = map_style(image, TileServer(source).levels)
     _write_plain(path, image)
     to3857 = _to_3857(crs)
 
@@ -140,6 +146,7 @@ def rotated_target(source: str, path: str, centre, shape, scale: float, angle_de
 
 
 def _write_plain(path: str, image: np.ndarray) -> None:
+    """Write the RGB ``image`` (h, w, 3) without georeferencing: PNG or JPEG by OpenCV, else a GeoTIFF."""
     import cv2
 
     if path.lower().endswith((".png", ".jpg")):
@@ -214,6 +221,7 @@ MAP_LIKE = ("photo-onto-map", "map-onto-photo")
 
 
 def units(config):
+    """(case name, method) pairs: each case (four with ``--quick``) with each plain benchmarked method."""
     from ..tables import BASELINE
 
     methods = [m for m in config.methods if m != BASELINE and "[" not in m] or ["auto"]  # plain names only
@@ -235,6 +243,8 @@ def build(name: str, source: str, folder: str) -> Tuple[TargetCase, Optional[str
 
 
 def run_unit(unit, config) -> list:
+    """One row: the case registered with the method onto a local tile server, first with an empty cache
+    (judged), then again from that cache (timed)."""
     from ...core import RegisterOptions, run
     from ...core.basemap.fetch import Fetcher
     from ..tileserver import TileServer
@@ -263,7 +273,7 @@ def run_unit(unit, config) -> list:
                     error = exc
                 wall = time.perf_counter() - t0
                 if attempt == "first":
-                    row.update(_judge(case, result, error, name in SHOULD_FAIL), time_s=wall,
+                    row.update(judge(case, result, error, name in SHOULD_FAIL), time_s=wall,
                                requests=server.requests - before, bytes=fetcher.stats.bytes,
                                fetch=fetcher.stats.to_dict())
                 else:
@@ -274,7 +284,9 @@ def run_unit(unit, config) -> list:
     return [row]
 
 
-def _judge(case: TargetCase, result, error, should_fail: bool) -> dict:
+def judge(case: TargetCase, result, error, should_fail: bool) -> dict:
+    """What a run of ``case`` gave: its verdict, true errors in px of the zoom registered at, and an
+    ``outcome`` ('verified', 'unverified', 'failed', 'crash' or 'WRONG', a confident wrong answer)."""
     from ...core.errors import HamtaError
 
     out = {"verified": False, "verdict": None, "median_px": None, "rms_px": None, "max_px": None, "zoom": None,
@@ -304,8 +316,8 @@ def tables(rows) -> list:
         first = r["time_s"]
         area = "–" if r["area_factor"] is None else f"{r['area_factor']:g}x"
         body.append([r["case"], r["method"], r["reference_style"], area, r["outcome"], r["method_used"] or "–",
-                     _num(r["median_px"], ".2f"), _num(r["rms_px"], ".2f"), _num(r["max_px"], ".2f"),
-                     _num(r["zoom"], "d"), f"{first:.1f}",
+                     cell(r["median_px"], ".2f"), cell(r["rms_px"], ".2f"), cell(r["max_px"], ".2f"),
+                     cell(r["zoom"], "d"), f"{first:.1f}",
                      f"{r['fetch']['seconds']:.1f}", r["requests"], f"{r['bytes'] / 1e6:.1f}", f"{r['rerun_s']:.1f}",
                      f"{100 * r['rerun_s'] / first:.0f}%", r["rerun_requests"]])
     wrong = sum(r["outcome"] == "WRONG" for r in rows)
@@ -321,10 +333,6 @@ def tables(rows) -> list:
                      "end (fetch, search coarse to fine, verification); fetch s: of which fetching tiles; rerun: the "
                      "same again from the disk cache. Goals: optical <= 1 px, map-like <= 2 px, 0 WRONG, <= 10 s, "
                      "<= 300 requests, rerun <= 20 % of the time. miss-area is a should-fail case."}]
-
-
-def _num(v, fmt):
-    return "–" if v is None else format(v, fmt)
 
 
 STUDY = Study("basemap", ("auto",), ("basemap",), units, run_unit, tables)

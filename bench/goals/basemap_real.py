@@ -24,8 +24,10 @@ import time
 
 import numpy as np
 
+from ...core.basemap.services import HALF_WORLD
 from ..study import Study
-from .basemap import HALF_WORLD, _judge, rotated_target, zoom_resolution
+from ..tables import cell
+from .basemap import judge, rotated_target, zoom_resolution
 
 FOLDER = "timeseries"
 PAIRS = (  # target date -> basemap date: years of change between them
@@ -60,6 +62,7 @@ def available(data_dir: str) -> bool:
 
 
 def units(config):
+    """(pair index, search area side factor, 'xyz' or 'wms', method) for each case to run."""
     methods = [m for m in config.methods if "[" not in m and m != "sift"] or ["auto"]
     pairs = range(len(PAIRS)) if not config.quick else (0, 5)
     sides = SIDES if not config.quick else (5.0,)
@@ -87,6 +90,8 @@ def build(i: int, side: float, data_dir: str, folder: str):
 
 
 def run_unit(unit, config) -> list:
+    """One row: the pair's target searched for on the other date, served by a local tile server; right within
+    3 px of the zoom registered at or 2 px of the target's source, whichever is coarser."""
     from ...core import RegisterOptions, run
     from ...core.basemap.fetch import Fetcher
     from ..memory import PeakRss
@@ -113,7 +118,7 @@ def run_unit(unit, config) -> list:
                                     options=RegisterOptions(extent=extent), fetcher=fetcher)
                 except Exception as exc:  # a HamtaError is an honest failure; anything else is reported as such
                     error = exc
-            row.update(_judge(case, result, error, False), time_s=time.perf_counter() - t0, requests=server.requests,
+            row.update(judge(case, result, error, False), time_s=time.perf_counter() - t0, requests=server.requests,
                        peak_mb=peak.peak, fetch=fetcher.stats.to_dict())
     finally:
         shutil.rmtree(cache, ignore_errors=True)
@@ -147,8 +152,8 @@ def tables(rows) -> list:
     body = []
     for r in sorted(rows, key=lambda r: (r["kind"], r["side"], r["case"])):
         body.append([r["case"], r["kind"], f"{r['side']:g}x", f"{r['data_share']:.2f}", r["outcome"],
-                     r["method_used"] or "–", _num(r["rms_px"], ".2f"), _num(r.get("tolerance_px"), ".1f"),
-                     _num(r["zoom"], "d"), f"{r['time_s']:.1f}", r["requests"], f"{r['peak_mb']:.0f}"])
+                     r["method_used"] or "–", cell(r["rms_px"], ".2f"), cell(r.get("tolerance_px"), ".1f"),
+                     cell(r["zoom"], "d"), f"{r['time_s']:.1f}", r["requests"], f"{r['peak_mb']:.0f}"])
     summary = []
     for side in sorted({r["side"] for r in rows}):
         these = [r for r in rows if r["side"] == side and r["kind"] == "xyz"]
@@ -174,10 +179,6 @@ def tables(rows) -> list:
              "columns": ["case", "service", "area", "data/area", "outcome", "via", "err rms px", "tol px", "zoom",
                          "time s", "requests", "peak MB"],
              "rows": body, "note": note}]
-
-
-def _num(v, fmt):
-    return "–" if v is None else format(v, fmt)
 
 
 STUDY = Study("basemap-real", ("auto",), ("basemap-real",), units, run_unit, tables)

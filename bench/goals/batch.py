@@ -26,6 +26,7 @@ def units(config):
 
 
 def run_unit(unit, config) -> list:
+    """One row: the pairs registered in turn, then on a 2-worker cluster: seconds of each, verified counts."""
     from ...core.batch import read_jobs, run_batch
     from ...core.batch.task import BatchSettings, register_job
     from ..sample import make_demo_pair
@@ -60,6 +61,7 @@ class DaskProcesses:
         self.n, self.folder = n, folder
 
     def __enter__(self):
+        """Start the processes; the scheduler's address once the ``n`` workers have joined it."""
         from distributed import Client
 
         with socket.socket() as s:

@@ -98,6 +98,8 @@ INTER1_RUNS = {"global": INTER1_OUTPUTS, "untouched": INTER1_OUTPUTS + ["--grid"
 
 
 def units(config):
+    """(kind, case) pairs: the georeferenced pair, INTER1's runs where ``HAMTA_INTER1`` is set, and the first
+    pairs of each multimodal category."""
     out = [("georeferenced", "landsat-2056")]
     if os.environ.get("HAMTA_INTER1"):
         out += [("inter1", name) for name in INTER1_RUNS]
@@ -107,6 +109,7 @@ def units(config):
 
 
 def run_unit(unit, config) -> list:
+    """One row: Hamta, and the peer where the case has one, timed on the unit's case."""
     kind, name = unit
     folder = os.path.join(config.out_dir, "cases", "speed")
     os.makedirs(folder, exist_ok=True)
@@ -142,11 +145,13 @@ def _installed_env() -> dict:
 
 
 def _registration_s(report) -> float:
+    """The seconds ``report`` gives to opening, reading and registering (the outputs left out)."""
     t = report["timings_s"]
     return t.get("open", 0) + t.get("read", 0) + t.get("auto_total", t.get("total", 0))
 
 
 def _model(report):
+    """The model of ``report`` (a dict as report.json holds it): target px -> reference px."""
     from ...core.estimation.models import LinearModel
 
     m = report["model"]
@@ -154,6 +159,8 @@ def _model(report):
 
 
 def _pair(kind: str, name: str, folder: str, data_dir: str) -> dict:
+    """The row of the multimodal pair ``name`` ('category/n'): Hamta, and for 'small-optical' the OpenCV
+    script; errors in reference px."""
     from ..multimodal_set import build
 
     family, pair = name.split("/")
@@ -206,6 +213,8 @@ def georeferenced_pair(folder: str, data_dir: str):
 
 
 def _georeferenced(folder: str, data_dir: str) -> dict:
+    """The row of the Landsat-sized shift pair: Hamta, and AROSICS COREG where ``HAMTA_AROSICS_PYTHON`` is set;
+    errors in px."""
     target, reference, truth = georeferenced_pair(folder, data_dir)
     wall, peak, code, report = _hamta(["--reference", reference, "--target", target], os.path.join(folder, "geo-out"),
                                       REPEATS)
@@ -228,6 +237,8 @@ def _georeferenced(folder: str, data_dir: str) -> dict:
 
 
 def _inter1(name: str, folder: str) -> dict:
+    """The row of INTER1 run ``name`` (a key of ``INTER1_RUNS``): Hamta, and AROSICS where it is installed;
+    each corrected raster judged by :func:`residual`."""
     source = os.environ["HAMTA_INTER1"]
     reference, target = (os.path.join(source, f) for f in INTER1)
     out = os.path.join(folder, f"inter1-{name}")

@@ -29,6 +29,7 @@ TARGET_SIDE = 4064  # 16.5 Mpx
 
 
 def units(config):
+    """The two output formats Hamta's writer is timed in, and the fixed cost."""
     return ["gtiff", "cog", "fixed-cost"]
 
 
@@ -60,6 +61,8 @@ def _pair(folder: str):
 
 
 def _writing(unit: str, folder: str) -> list:
+    """Rows for the format ``unit`` ('gtiff' or 'cog'): Hamta's writer, then ``gdalwarp`` single- and
+    multi-threaded, on the same model VRT: seconds and peak MB; Hamta's row also its ratios to the best."""
     from ...core import OutputOptions, RegisterOptions, register
     from ...core.outputs.model_vrt import write_model_vrt
     from ...core.outputs.warp import GTIFF_OPTIONS, THREADS, output_grid, write_warped
@@ -92,6 +95,8 @@ def _writing(unit: str, folder: str) -> list:
 
 
 def _fixed_cost(folder: str) -> list:
+    """Rows of three fresh ``hamta register --method sift`` runs on the demo pair: wall seconds, of which
+    reading and matching, and the rest (the fixed cost)."""
     from ..sample import make_demo_pair
 
     pair = make_demo_pair(os.path.join(folder, "small"))

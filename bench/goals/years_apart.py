@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 from ..study import Study
-from .basemap import _num
+from ..tables import cell
 from .basemap_real import FOLDER
 
 PAIRS = (  # target date, reference date, the target's georeferencing moved by (x, y) target px
@@ -39,6 +39,7 @@ def available(data_dir: str) -> bool:
 
 
 def units(config):
+    """(pair index, method) for each case (pairs 3 and 5 with ``--quick``)."""
     methods = [m for m in config.methods if "[" not in m] or ["auto"]
     pairs = range(len(PAIRS)) if not config.quick else (3, 5)
     return [(i, m) for i in pairs for m in methods]
@@ -78,6 +79,8 @@ def truth_points(target: str, reference: str, n: int = GRID):
 
 
 def run_unit(unit, config) -> list:
+    """One row: the pair's moved target registered onto the other date: verdict, RMS error and mean offset
+    in reference px against the file's own georeferencing, and the check's bound."""
     from ...core import RegisterOptions, run
     from ...core.errors import HamtaError
     from ..memory import PeakRss
@@ -114,9 +117,9 @@ def tables(rows) -> list:
         done, n = met.get(r["method"], (0, 0))
         met[r["method"]] = (done + within, n + 1)
         body.append([r["case"], r["method"], "{:+d}, {:+d}".format(*r["moved_px"]), r["method_used"] or "–",
-                     r["verdict"], _num(r["rms_px"], ".2f"),
+                     r["verdict"], cell(r["rms_px"], ".2f"),
                      "–" if r["offset_px"] is None else "{:+.2f}, {:+.2f}".format(*r["offset_px"]),
-                     _num(r["bound_px"], ".2f"), "yes" if within else "no", f"{r['time_s']:.1f}",
+                     cell(r["bound_px"], ".2f"), "yes" if within else "no", f"{r['time_s']:.1f}",
                      f"{r['peak_mb']:.0f}"])
     counts = "; ".join(f"{m} {done} of {n}" for m, (done, n) in sorted(met.items()))
     return [{"title": f"years-apart: one date's file, its georeferencing moved, onto another date; verified within "

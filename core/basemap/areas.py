@@ -7,8 +7,12 @@ reads what the first run did and reaches the same verdict.
 """
 from __future__ import annotations
 
+import math
 import re
 
+import numpy as np
+
+from ..coords import map_to_pixel
 from ..scratch import process_folder
 from .coverage import Coverage, finest_zoom, remembered_finest
 from .fetch import Fetcher, ServiceError
@@ -117,6 +121,18 @@ class AreaReader:
                                "search area.")
         self.planned += count
         self.read_before.add(key)
+
+
+def mask_outside(valid: np.ndarray, transform, bounds) -> None:
+    """Mark the pixels of an area read as whole tiles that lie outside the search area ``bounds`` invalid:
+    a target is looked for where the user asked, not in the tiles' margins."""
+    (c0, r0), (c1, r1) = map_to_pixel(transform, np.array([[bounds[0], bounds[3]], [bounds[2], bounds[1]]]))
+    c0, r0 = max(0, int(math.floor(c0))), max(0, int(math.floor(r0)))
+    c1, r1 = int(math.ceil(c1)), int(math.ceil(r1))
+    valid[:r0] = False
+    valid[r1:] = False
+    valid[:, :c0] = False
+    valid[:, c1:] = False
 
 
 def _centre(bounds):

@@ -141,11 +141,13 @@ class Fetcher:
         if store is not None:
             store.remove(_entry(store, url))
 
-    def _cached(self, url: str) -> Optional[bytes]:
+    def cached(self, url: str) -> Optional[bytes]:
+        """``url``'s cached answer, or None."""
         store = self.store
         return None if store is None else store.read(_entry(store, url), self.max_bytes)
 
-    def _store(self, url: str, body: bytes) -> None:
+    def keep(self, url: str, body: bytes) -> None:
+        """Cache ``body`` as ``url``'s answer (where the cache is usable)."""
         store = self.store
         if store is None:
             return
@@ -157,13 +159,30 @@ class Fetcher:
             return
         store.write(path, body)
 
-    def _count(self, url: str) -> None:
-        """Count one request, within the run's caps."""
+    def count_request(self, url: str) -> None:
+        """Count one request to ``url``, within the run's caps."""
         with self._lock:
             if self.stats.requests >= self.max_requests:
                 raise ServiceError(f"The map service at {host(url)} was sent the {self.max_requests} requests a "
                                    "run may send (retries included): choose a smaller search area.")
             self.stats.requests += 1
+
+    def count_bytes(self, url: str, size: int) -> None:
+        """Count ``size`` bytes received from ``url``, within the run's cap."""
+        with self._lock:
+            self.stats.bytes += size
+            if self.stats.bytes > self.max_run_bytes:
+                raise ServiceError(f"The map service at {host(url)} sent more than the {self.max_run_bytes >> 20} MB "
+                                   "a run may receive: choose a smaller search area.")
+
+    def count_cache_hit(self) -> None:
+        with self._lock:
+            self.stats.cache_hits += 1
+
+    def count_missing(self) -> None:
+        """Count one tile the service does not have."""
+        with self._lock:
+            self.stats.missing += 1
 
 
 def _entry(store: Cache, url: str) -> str:
@@ -198,20 +217,34 @@ class _Run:
     def one(self, url: str):
         """The decoded answer for ``url`` (None for a missing tile): from the cache, or the network."""
         f = self.fetcher
-        cached = f._cached(url)
+        cached = f.cached(url)
         if cached is not None:
             try:
                 value = self.decode(url, cached)
-                with f._lock:
-                    f.stats.cache_hits += 1
+                f.count_cache_hit()
                 return value
             except BadAnswer:
                 f.forget(url)
-        delay = f.backoff_s
-        for attempt in range(f.retries + 1):
-            f._count(url)
+        body = self.fetched(url)
+        if body is None:
+            f.count_missing()
+            return None
+        try:
+            value = self.decode(url, body)
+        except BadAnswer as exc:
+            raise ServiceError(f"The map service at {host(url)} {exc} ({redact(url)}).") from None
+        f.keep(url, body)
+        return value
+
+    def fetched(self, url: str) -> Optional[bytes]:
+        """:meth:`request`, asked again after a failure worth retrying, ``retries`` times, pausing ``backoff_s``
+        doubled each time; raises :class:`ServiceError` for the failure that ends it."""
+        f = self.fetcher
+        delay, attempt = f.backoff_s, 0
+        while True:
+            f.count_request(url)
             try:
-                body = self.request(url)
+                return self.request(url)
             except http.Failure as exc:
                 if not exc.retry:
                     raise ServiceError(f"The map service at {host(url)} {exc} ({redact(url)}).") from None
@@ -219,20 +252,8 @@ class _Run:
                     tries = f"{f.retries + 1} {'try' if f.retries == 0 else 'tries'}"
                     raise ServiceError(f"The map service at {host(url)} did not answer properly after {tries}: the "
                                        f"last time it {exc} ({redact(url)}).") from None
-                self._pause(delay)
-                delay *= 2
-                continue
-            if body is None:
-                with f._lock:
-                    f.stats.missing += 1
-                return None
-            try:
-                value = self.decode(url, body)
-            except BadAnswer as exc:
-                raise ServiceError(f"The map service at {host(url)} {exc} ({redact(url)}).") from None
-            f._store(url, body)
-            return value
-        return None  # not reached
+            self._pause(delay)
+            delay, attempt = delay * 2, attempt + 1
 
     def request(self, url: str) -> Optional[bytes]:
         """The body of a 2xx answer (None for a missing tile); raises :class:`http.Failure`."""
@@ -242,11 +263,7 @@ class _Run:
             raise ServiceError(f"The map service at {host(url)} took more than the {f.budget_s:g} s a run may spend "
                                "fetching: choose a smaller search area or try again later.")
         answer = http.get(url, self.watch, min(f.timeout_s, left), f.max_bytes)
-        with f._lock:
-            f.stats.bytes += len(answer.body)
-            if f.stats.bytes > f.max_run_bytes:
-                raise ServiceError(f"The map service at {host(url)} sent more than the {f.max_run_bytes >> 20} MB a "
-                                   "run may receive: choose a smaller search area.")
+        f.count_bytes(url, len(answer.body))
         if answer.status in MISSING_STATUS or (answer.status == 200 and not answer.body and answer.complete):
             return None
         if answer.status in RETRY_STATUS or (200 <= answer.status < 300 and not answer.body):

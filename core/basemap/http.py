@@ -15,7 +15,7 @@ import ssl
 import threading
 import time
 from dataclasses import dataclass
-from typing import Dict, Optional
+from typing import Dict, List, Optional
 from urllib.parse import urljoin, urlsplit
 
 from ..text import printable
@@ -135,16 +135,8 @@ def _once(url: str, watch: Watch, deadline: float, timeout_s: float, max_bytes: 
         port = parts.port
     except ValueError:
         raise Failure("has an address whose port is not a number", retry=False) from None
-    kind = http.client.HTTPSConnection if parts.scheme.lower() == "https" else http.client.HTTPConnection
-    conn = kind(parts.hostname or "", port, timeout=remaining)
-    held = []
-
-    def connect(address, timeout, source_address=None):
-        sock = socket.create_connection(address, timeout, source_address)
-        held.append(watch.add(sock, deadline))
-        return sock
-
-    conn._create_connection = connect
+    kind = WatchedHTTPSConnection if parts.scheme.lower() == "https" else WatchedConnection
+    conn = kind.watched_by(watch, deadline, parts.hostname or "", port, timeout=remaining)
     path = (parts.path or "/") + (f"?{parts.query}" if parts.query else "")
     try:
         conn.request("GET", path, headers={"User-Agent": f"Hamta/{__version__} (georeferencing)",
@@ -161,17 +153,45 @@ def _once(url: str, watch: Watch, deadline: float, timeout_s: float, max_bytes: 
     except (Failure, Canceled):
         raise
     except (OSError, http.client.HTTPException, ValueError) as exc:
-        expired = any([watch.done(w) for w in held])  # every one released
-        held.clear()
+        expired = any([watch.done(w) for w in conn.held])  # every one released
+        conn.held.clear()
         if watch.canceled:
             raise Canceled() from None
         if expired or isinstance(exc, (socket.timeout, TimeoutError)):
             raise Failure(f"gave no whole answer within {timeout_s:g} s", retry=True) from None
         raise _failure(exc) from None
     finally:
-        for w in held:
+        for w in conn.held:
             watch.done(w)
         conn.close()
+
+
+class WatchedConnection(http.client.HTTPConnection):
+    """An HTTP connection whose socket :meth:`connect` hands to ``watch`` as soon as it is connected, to be
+    shut at ``deadline`` or on a cancel; ``held`` keeps the duplicates to release through :meth:`Watch.done`."""
+
+    watch: Watch
+    deadline: float
+    held: List[socket.socket]
+
+    @classmethod
+    def watched_by(cls, watch: Watch, deadline: float, host: str, port: Optional[int], timeout: float):
+        """A connection to ``host``:``port`` (``timeout``: seconds, for each socket operation) watched by ``watch``."""
+        conn = cls(host, port, timeout=timeout)
+        conn.watch, conn.deadline, conn.held = watch, deadline, []
+        return conn
+
+    def connect(self) -> None:
+        """Connect as the standard library does, then watch the socket."""
+        super().connect()
+        self.held.append(self.watch.add(self.sock, self.deadline))
+
+
+class WatchedHTTPSConnection(http.client.HTTPSConnection, WatchedConnection):
+    """HTTPS over a :class:`WatchedConnection`: ``HTTPSConnection.connect`` opens the connection through
+    ``super().connect()``, which these bases make :meth:`WatchedConnection.connect`, so the socket is watched
+    from before the TLS handshake; the handshake is the standard library's own (its default context: the
+    certificate verified, the URL's host sent as SNI and checked against the certificate)."""
 
 
 def _body(response, max_bytes: int):

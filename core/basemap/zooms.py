@@ -40,6 +40,13 @@ def zoom_in_budget(service: TileService, bounds, pixel_size: float, max_pixels: 
                      f"coarsest zoom ({service.zmin}) it exceeds the pixel budget. Give a smaller search area.")
 
 
+def padded(bounds, margin: float):
+    """``bounds`` widened by ``margin`` of their larger side each way."""
+    x0, y0, x1, y1 = bounds
+    pad = margin * max(x1 - x0, y1 - y0)
+    return x0 - pad, y0 - pad, x1 + pad, y1 + pad
+
+
 def search_bounds(text: str, service: TileService):
     """The search area in the service's CRS, clipped to its grid; refused when it is too small to hold a
     target (or its numbers look like metres given without their CRS)."""

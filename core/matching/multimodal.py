@@ -19,8 +19,10 @@ import cv2
 import numpy as np
 from scipy import fft as sfft
 
-from ..descriptors.cfog import cfog, ncc_surface, peak_offset
+from ..descriptors.cfog import ncc_surface
 from ..estimation.affine2d import apply, invert, similarity, warp
+from ..similarity.cfog import cfog
+from ..similarity.peak import peak_offset
 
 
 def _centred(desc: np.ndarray, valid: np.ndarray, local_sigma: float = 0.0) -> np.ndarray:

@@ -12,6 +12,7 @@ from itertools import zip_longest
 
 from ..descriptors import xfeat
 from ..io.raster import read_image, resolve_bands
+from ..learned import available as learned_available
 from .locate import features, learned_locate, locate
 from .structure import structure_places
 
@@ -52,7 +53,7 @@ def learned_target_features(image, valid):
     """A function giving the XFeat features of the target's working ``image`` at each turn and scale of
     :data:`LEARNED_TURNS_DEG` and :data:`LEARNED_SCALES` (computed on first use: most searches SIFT settles),
     or None without the extra."""
-    if not xfeat.available():
+    if not learned_available():
         return None
     cache = []
 

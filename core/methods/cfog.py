@@ -24,13 +24,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..descriptors.cfog import cfog
 from ..estimation import triplets
 from ..estimation.ransac import ransac_or_none
 from ..matching import multimodal
 from ..preprocess.sar import SAR_UNITS
 from ..progress import Monitor
 from ..refine import STRUCTURAL_REFINEMENT
+from ..similarity.cfog import cfog
 from ..types import Matches
 from .lines_spectral import LinesParams, match_lines, sar_image
 from .registry import Method, Toolbox, param, register_method, validate

@@ -11,8 +11,8 @@ within each image (Hamming) -> bidirectional (mutual) nearest neighbours -> RANS
 3-point samples (the shared robust fit) -> GCPs.
 
 The paper leaves T, the similarity threshold and the RANSAC tolerance unspecified; they are
-parameters whose defaults come from a sweep recorded in docs/benchmarks.md. "Selective angle and
-scale" in the title names the pipeline, not a voting step; the literal vote of the spec's
+parameters with documented defaults (``hamta bench --methods sibrif --sweep KEY=V1,V2`` compares values).
+"Selective angle and scale" in the title names the pipeline, not a voting step; the literal vote of the spec's
 Appendix B (histograms of angle and log-scale differences) is an option, off by default.
 """
 from __future__ import annotations
@@ -194,7 +194,7 @@ METHOD = register_method(Method(
             "'sibrif-faithful' is the paper as written.",
     citation="M. Safdari, P. Moallem and M. Sattari, Robust and fast aerial and satellite image matching based on "
              "selective scale and rotation (SIBRIF).", params_type=SibrifParams, match=match,
-    ransac_threshold_px=2.0,  # the paper gives none; sweep (docs/benchmarks.md): 1-5 px within 0.01 px median
+    ransac_threshold_px=2.0,  # the paper gives none
     use_when="aerial or drone frames onto satellite imagery, when speed matters",
     toolbox=Toolbox("registersibrif", "Register aerial image onto satellite image (SIBRIF, fast)")))
 

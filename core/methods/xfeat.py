@@ -20,6 +20,8 @@ from ..descriptors import xfeat
 from ..errors import InputError
 from ..estimation.affine2d import resize
 from ..estimation.ransac import ransac_or_none
+from ..learned import available as learned_available
+from ..learned import missing_text
 from ..matching.nearest import mutual_nearest
 from ..types import Matches
 from .registry import Method, param, register_method, validate
@@ -48,8 +50,8 @@ class XfeatParams:
 
 def match(target, reference, params: XfeatParams, monitor, seed: int = 0) -> Matches:
     """Mutual nearest XFeat descriptors of the target (tried at each turn) and the reference."""
-    if not xfeat.available():
-        raise InputError(xfeat.missing_text())
+    if not learned_available():
+        raise InputError(missing_text())
     size = max(target.data.size, reference.data.size)
     shrink = min(1.0, math.sqrt(params.max_pixels / size))
     target_data, target_valid, t_scale = _shrunk(target, shrink)

@@ -54,7 +54,7 @@ CITATION = ("Li, Hu & Ai 2020, IEEE TIP 29:3296 (RIFT); Li et al. 2023, arXiv:23
 @dataclass(frozen=True)
 class XmodalParams:
     """The four stages; defaults chosen on the odd-numbered pairs of the real multimodal set and
-    confirmed on the even-numbered ones (docs/benchmarks.md)."""
+    confirmed on the even-numbered ones (``hamta bench --families multimodal-set``)."""
 
     feat_px: int = param(320, "Longest reference side for feature extraction, px: enough detail for RIFT features, "
                               "and their cost.", minimum=64)

@@ -41,11 +41,11 @@ from typing import Optional
 
 import numpy as np
 
-from ..descriptors.cfog import peak_offset
 from ..io.raster import RasterInfo
 from ..io.windows import WindowReader
 from ..parallel import threaded
 from ..progress import Monitor
+from ..similarity.peak import peak_offset
 from .correlation import SearchSpectrum, TemplateSpectrum, fast_length, margin, zero_score
 from .field import error_field, fit_field, model_error
 from .params import VERDICTS, Verification, VerifyParams

@@ -6,8 +6,10 @@ import pytest
 from hamta.bench.families import CaseSpec, build_case
 from hamta.bench.synthetic import make_landscape
 from hamta.core import RegisterOptions, register
-from hamta.core.descriptors.cfog import cfog, ncc_surface, peak_offset
+from hamta.core.descriptors.cfog import ncc_surface
 from hamta.core.matching.multimodal import apply, dense_matches, search_similarity, similarity
+from hamta.core.similarity.cfog import cfog
+from hamta.core.similarity.peak import peak_offset
 
 
 def _landscape():
@@ -88,7 +90,7 @@ def test_the_checks_numpy_smoothing_and_sampling_equal_scipys():
     """The check avoids importing scipy.ndimage (a third of a second per run) with the same numbers."""
     from scipy import ndimage
 
-    from hamta.core.descriptors.cfog import gaussian_blur, gaussian_kernel
+    from hamta.core.similarity.cfog import gaussian_blur, gaussian_kernel
     from hamta.core.verify.sites import bilinear, nearest_valid
 
     rng = np.random.default_rng(0)
@@ -108,7 +110,7 @@ def test_the_checks_numpy_smoothing_and_sampling_equal_scipys():
 
 def _cfog_over_the_stack(image, valid, portable, bins=9, sigma=0.8):
     """CFOG as first written: the orientation smoothing and normalisation over the whole stack at once."""
-    from hamta.core.descriptors.cfog import central_differences, gaussian_blur
+    from hamta.core.similarity.cfog import central_differences, gaussian_blur
 
     img = image.astype(np.float64 if portable else np.float32)
     img = np.where(valid, img, img.dtype.type(img[valid].mean()))

@@ -151,11 +151,11 @@ def test_lint_passes_in_a_clone_named_hamta(tmp_path):
 # engine's folders in data-flow order, then what stands on the engine. Units on one line never
 # import each other.
 LAYERS = (
-    ("core.version", "core.errors", "core.coords", "core.types", "core.outcome", "core.text"),
+    ("core.version", "core.errors", "core.coords", "core.types", "core.outcome", "core.text", "core.learned"),
     ("core.extent",),
     ("core.options", "core.progress", "core.memory", "core.blas", "core.fourier", "core.scratch"),
     ("core.parallel",),
-    ("core.io", "core.preprocess", "core.detectors", "core.estimation", "core.basemap"),
+    ("core.io", "core.preprocess", "core.detectors", "core.estimation", "core.basemap", "core.similarity"),
     ("core.descriptors",),
     ("core.matching",),
     ("core.refine", "core.verify"),
@@ -201,6 +201,16 @@ def test_imports_go_down_the_layers_only():
                     elif RANK[other] >= RANK[me]:
                         offenders.append(f"{path.relative_to(REPO)}:{node.lineno} ({me}) imports {module} ({other})")
     assert not unknown, f"units missing from LAYERS: {sorted(unknown)}"
+    assert not offenders, "\n".join(offenders)
+
+
+def test_the_check_imports_no_matcher():
+    """The independent check shares its similarity measure with the matchers through ``core.similarity`` only:
+    no module of ``core/verify`` imports the descriptors, the methods or the matching (function level too)."""
+    matchers = ("hamta.core.descriptors", "hamta.core.methods", "hamta.core.matching")
+    offenders = [f"{path.relative_to(REPO)}:{line} imports {module}"
+                 for path in (REPO / "core" / "verify").rglob("*.py") for module, line in _imports(path)
+                 if any(module == m or module.startswith(m + ".") for m in matchers)]
     assert not offenders, "\n".join(offenders)
 
 
