@@ -22,9 +22,11 @@ from __future__ import annotations
 import dataclasses
 import time
 from dataclasses import dataclass
-from typing import Callable, List, Mapping, Optional
+from enum import Enum
+from typing import Callable, List, Mapping, Optional, Tuple
 
 from .errors import DeadlineReached, InsufficientMatchesError, method_crashes
+from .learned import available as learned_available
 from .outcome import Attempt, AutoRun
 from .progress import Monitor
 from .verify import corroborate, corroborating, error_bound, result_rank
@@ -42,6 +44,15 @@ AUTO = "auto"
 PRECISE_SHARE = 1 / 6
 
 
+class When(Enum):
+    """A condition under which a step of :data:`CHAIN` is in a plan's chain (:func:`chain_for`)."""
+
+    PRIOR = "the target's georeferencing placed it on the reference"
+    NO_PRIOR = "nothing placed the target on the reference"
+    FULL = "the whole chain, not the short one of a basemap search's places"
+    LEARNED = "the 'learned' extra is installed and not turned off"
+
+
 @dataclass(frozen=True)
 class Step:
     """One method ``auto`` may try, with its parameters, what it is for, and its refinement when the
@@ -49,7 +60,8 @@ class Step:
     resolution correlation around them makes the result three to five times more accurate for a
     few tenths of a second, measured on the rotation family). ``rough``: a fast step whose verified result,
     when the check bounds its error above :data:`PRECISE_SHARE` of the tolerance, the ``precise`` steps after
-    it try to beat (fast, and as accurate as any)."""
+    it try to beat (fast, and as accurate as any). ``when``: the conditions that must all hold for the step
+    to be in a chain (none: always)."""
 
     method: str
     params: Mapping[str, object]
@@ -57,50 +69,58 @@ class Step:
     refine: str = "auto"
     precise: bool = False
     rough: bool = False
+    when: Tuple[When, ...] = ()
 
 
+LEARNED_WHY = "optical images years apart: learned features (the 'learned' extra)"
+# Refinement 'on' for the shift: its windows are few, the full-resolution grid gives the fit its spread and
+# precision. XFeat runs upright where the georeferencing placed the target on the reference, turned every 45
+# degrees otherwise; after xmodal (before it, XFeat's answers were kept on 6 of 54 real multimodal pairs that
+# xmodal registers more accurately, and it cost time on every pair).
 CHAIN = (
+    Step("shift", {}, "both rasters georeferenced: the offset left, by correlation in windows", refine="on",
+         rough=True, when=(When.PRIOR,)),
     Step("sift", {}, "fast; the same sensor or similar images, any rotation and scale", refine="on", precise=True),
     Step("xmodal", {}, "across modalities (SAR, infrared, depth, maps, night lights), any rotation, scale 1/2-2",
          precise=True),
+    Step("xfeat", {}, LEARNED_WHY, refine="on", precise=True, when=(When.LEARNED, When.PRIOR)),
+    Step("xfeat", {"max_rotation_deg": 180.0}, LEARNED_WHY, refine="on", precise=True,
+         when=(When.LEARNED, When.NO_PRIOR)),
     Step("cfog", {}, "across modalities, target roughly north-up: dense structural search"),
-    Step("ndsift-pc", {}, "SAR onto SAR: speckle-robust features, any rotation"),
-    Step("cfog", {"max_rotation_deg": 180.0}, "across modalities at any rotation, dense (slow)"),
+    Step("regions", {}, "a scanned map onto a layer of its areas (lakes, blocks): regions as control points, any "
+         "rotation and scale", when=(When.FULL,)),
+    Step("ndsift-pc", {}, "SAR onto SAR: speckle-robust features, any rotation", when=(When.FULL,)),
+    Step("cfog", {"max_rotation_deg": 180.0}, "across modalities at any rotation, dense (slow)", when=(When.FULL,)),
 )
-# Refinement 'on': the windows are few, the full-resolution grid gives the fit its spread and precision.
-SHIFT_STEP = Step("shift", {}, "both rasters georeferenced: the offset left, by correlation in windows", refine="on",
-                  rough=True)
 
 
 def chain_for(plan_mode: str, short: bool = False):
-    """The steps for a plan: the shift first when the target's georeferencing placed it; the learned
-    matcher after ``xmodal`` when its extra is installed (before it, XFeat's answers were kept on 6 of 54
-    real multimodal pairs that ``xmodal`` registers more accurately, and it cost time on every pair).
+    """The steps of :data:`CHAIN` whose conditions hold for a plan: the shift first when the target's
+    georeferencing placed it; the learned matcher when its extra is available (:func:`hamta.core.learned.available`).
     ``short``: up to the north-up structural search only, and the first verified result taken (a
     basemap search's places, where a wrong place must cost little, and the same work on any machine: the
     SAR matcher and the all-rotation dense search after it are for gaps a basemap seldom has; trying to
     beat a verified place's bound would cost every place the precise matchers' time again)."""
     prior = plan_mode == "georeferenced"
-    chain = ((SHIFT_STEP,) if prior else ()) + CHAIN[:2] + learned_steps(prior) + CHAIN[2:3 if short else None]
+    holds = {When.PRIOR: prior, When.NO_PRIOR: not prior, When.FULL: not short, When.LEARNED: learned_available()}
+    chain = tuple(step for step in CHAIN if all(holds[w] for w in step.when))
     return tuple(dataclasses.replace(step, precise=False) for step in chain) if short else chain
 
 
-def learned_steps(prior: bool) -> tuple:
-    """XFeat when the 'learned' extra is installed: upright where the georeferencing placed the target
-    on the reference, every 45 degrees otherwise."""
-    from .descriptors.xfeat import available
+class Polishing(Enum):
+    """Whether the precise steps may try to beat the verified result: undecided until a result verifies,
+    then on when that first verified result is a rough step's (the shift), off otherwise."""
 
-    if not available():
-        return ()
-    return (Step("xfeat", {} if prior else {"max_rotation_deg": 180.0},
-                 "optical images years apart: learned features (the 'learned' extra)", refine="on", precise=True),)
+    UNDECIDED = "undecided"
+    ON = "on"
+    OFF = "off"
 
 
-def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
-    """Try ``chain``'s steps in order; return the first verified result, else the best unverified one. When
-    the first verified result is a rough step's (the shift) and the check bounds its error above
-    :data:`PRECISE_SHARE` of ``options.tolerance_px``, the precise steps after it run until one is bounded
-    within that, and the verified result with the smallest bound is returned.
+def register_auto(attempt: Callable, options, monitor: Monitor, chain) -> object:
+    """Try ``chain``'s steps (:func:`chain_for`) in order; return the first verified result, else the best
+    unverified one. When the first verified result is a rough step's (the shift) and the check bounds its
+    error above :data:`PRECISE_SHARE` of ``options.tolerance_px``, the precise steps after it run until one is
+    bounded within that, and the verified result with the smallest bound is returned.
 
     ``options.auto_budget_s`` is a deadline: once spent, the running step is stopped (at its next
     progress report) and no further step starts. The first step is exempt, so that a budget shorter
@@ -108,17 +128,14 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
     every attempt) when no step produced a model. Only that error means "no model": a step raising
     anything else but a Hamta error is a bug, and ends the run as :class:`MethodCrashed` naming it.
     """
-    chain = CHAIN if chain is None else chain
     start = time.perf_counter()
+    spent = f"time budget of {options.auto_budget_s:g} s spent"
     attempts: List[Attempt] = []
     found = []
     best, chosen = None, None
-    polishing = None  # whether the first verified result came from a rough step (then the precise steps may beat it)
+    polishing = Polishing.UNDECIDED
     for i, step in enumerate(chain):
-        elapsed = time.perf_counter() - start
-
-        spent = f"time budget of {options.auto_budget_s:g} s spent"
-        if elapsed > options.auto_budget_s:
+        if time.perf_counter() - start > options.auto_budget_s:
             attempts.append(tried(step, "skipped", spent))
             continue
         if best is not None and best.verified and not step.precise:
@@ -127,30 +144,19 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
         step_monitor = monitor.span(i / len(chain), (i + 1) / len(chain))
         if i:
             step_monitor = step_monitor.until(start + options.auto_budget_s)
-        try:  # any other Hamta error (bad input, canceled) and a bug (MethodCrashed) end the run
-            with method_crashes(step.method):
-                result = attempt(step.method, dict(step.params), step_monitor, step.refine)
-        except DeadlineReached:
-            attempts.append(tried(step, "stopped", spent, t0))
+        result, record = run_step(attempt, step, step_monitor, spent, t0)
+        attempts.append(record)
+        if result is None:
             continue
-        except InsufficientMatchesError as exc:  # the one signal of "this method found no model"
-            attempts.append(tried(step, "no model", _first_line(exc), t0))
-            continue
-        v = result.verification
-        attempts.append(tried(step, v.verdict, "; ".join(v.reasons) or "verified", t0))
-        partner = None if v.verified else corroborating(result, found, options.tolerance_px)
-        if partner is not None:
-            result = corroborate(result, partner[0], partner[1])
-            attempts[-1] = dataclasses.replace(attempts[-1], outcome="verified",
-                                               reason=_first_line(result.verification.corroboration["summary"]))
+        result, attempts[-1] = corroborated(result, attempts[-1], found, options.tolerance_px)
         found.append(result)
         if best is not None and best.verified and result.verified:
             attempts[-1] = dataclasses.replace(attempts[-1], reason=compared(result, best))
         if better(result, best):
             best, chosen = result, len(attempts) - 1
-        if result.verified and polishing is None:
-            polishing = step.rough
-        if best.verified and not (polishing and bound(best) > PRECISE_SHARE * options.tolerance_px):
+        if result.verified and polishing is Polishing.UNDECIDED:
+            polishing = Polishing.ON if step.rough else Polishing.OFF
+        if best.verified and not (polishing is Polishing.ON and bound(best) > PRECISE_SHARE * options.tolerance_px):
             break
     monitor.report(1.0, "registered")
     if best is None:
@@ -159,6 +165,32 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain=None):
                 f"{a.method}: {a.reason}" for a in attempts) + ").", 0, 1)
     timings = dataclasses.replace(best.timings, auto_total=round(time.perf_counter() - start, 4))
     return dataclasses.replace(best, auto=AutoRun.of(attempts, chosen), timings=timings)
+
+
+def run_step(attempt: Callable, step: Step, monitor: Monitor, spent: str, t0: float):
+    """``step`` run through ``attempt`` (started at ``t0``): its result, None when it found no model or the
+    budget (``spent``) stopped it, and its :class:`Attempt`. Any other Hamta error (bad input, canceled) and a
+    bug (:class:`MethodCrashed`) end the run."""
+    try:
+        with method_crashes(step.method):
+            result = attempt(step.method, dict(step.params), monitor, step.refine)
+    except DeadlineReached:
+        return None, tried(step, "stopped", spent, t0)
+    except InsufficientMatchesError as exc:  # the one signal of "this method found no model"
+        return None, tried(step, "no model", _first_line(exc), t0)
+    v = result.verification
+    return result, tried(step, v.verdict, "; ".join(v.reasons) or "verified", t0)
+
+
+def corroborated(result, record: Attempt, found: list, tolerance_px: float):
+    """``result`` and its ``record``, or, where it did not verify on its own but it and a result ``found``
+    before it each have partial support and agree within ``tolerance_px``, the two corroborated (verified)."""
+    partner = None if result.verification.verified else corroborating(result, found, tolerance_px)
+    if partner is None:
+        return result, record
+    result = corroborate(result, partner[0], partner[1])
+    return result, dataclasses.replace(record, outcome="verified",
+                                       reason=_first_line(result.verification.corroboration["summary"]))
 
 
 def bound(result) -> float:

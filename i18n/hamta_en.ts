@@ -69,72 +69,72 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="258"/>
+        <location filename="../plugin/autogeoref.py" line="261"/>
         <source>Auto-georeference</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="116"/>
+        <location filename="../plugin/autogeoref.py" line="117"/>
         <source>The raster file to georeference (a raster layer read by GDAL).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="117"/>
+        <location filename="../plugin/autogeoref.py" line="118"/>
         <source>Target raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="126"/>
+        <location filename="../plugin/autogeoref.py" line="129"/>
         <source>Reference layer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="141"/>
+        <location filename="../plugin/autogeoref.py" line="144"/>
         <source>On by default for a target without georeferencing (the map canvas extent). On for a georeferenced target, Hamta ignores the target&apos;s georeferencing and searches here.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="151"/>
+        <location filename="../plugin/autogeoref.py" line="154"/>
         <source>Search area, {} (where to look for the target)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="155"/>
+        <location filename="../plugin/autogeoref.py" line="158"/>
         <source>A folder for the warped raster, the GCPs (GeoPackage and .points) and the reports; files of an earlier run there are replaced.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="158"/>
+        <location filename="../plugin/autogeoref.py" line="161"/>
         <source>Write the georeferenced raster even when the independent check does not confirm the result (it is then marked NOT VERIFIED).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="160"/>
+        <location filename="../plugin/autogeoref.py" line="163"/>
         <source>Output folder</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="164"/>
+        <location filename="../plugin/autogeoref.py" line="167"/>
         <source>Run</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="237"/>
+        <location filename="../plugin/autogeoref.py" line="240"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="245"/>
+        <location filename="../plugin/autogeoref.py" line="248"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="247"/>
+        <location filename="../plugin/autogeoref.py" line="250"/>
         <source>Choose an output folder.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="250"/>
+        <location filename="../plugin/autogeoref.py" line="253"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -229,7 +229,7 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="157"/>
+        <location filename="../plugin/autogeoref.py" line="160"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
     </message>
@@ -264,58 +264,58 @@
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="123"/>
-        <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...) or a raster. The results are in its CRS. None: a scanned map is georeferenced by the grid printed on it.</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
-        <location filename="../plugin/autogeoref.py" line="184"/>
+        <location filename="../plugin/autogeoref.py" line="187"/>
         <source>By the sheet&apos;s own grid (no reference layer)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="190"/>
+        <location filename="../plugin/autogeoref.py" line="193"/>
         <source>The sheet&apos;s projection: the results are in it (sheets rarely print it).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="191"/>
+        <location filename="../plugin/autogeoref.py" line="194"/>
         <source>CRS of the sheet</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="193"/>
+        <location filename="../plugin/autogeoref.py" line="196"/>
         <source>GCP points (*.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="198"/>
+        <location filename="../plugin/autogeoref.py" line="201"/>
         <source>Hints (.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="240"/>
+        <location filename="../plugin/autogeoref.py" line="243"/>
         <source>Choose the CRS of the sheet, or a reference layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="195"/>
+        <location filename="../plugin/autogeoref.py" line="198"/>
         <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points; empty: the labels printed in the sheet&apos;s margins are read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="242"/>
+        <location filename="../plugin/autogeoref.py" line="245"/>
         <source>The hints file does not exist: choose the GCP points (.points) saved in the Georeferencer, or leave it empty to have the sheet&apos;s printed labels read.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="188"/>
+        <location filename="../plugin/autogeoref.py" line="191"/>
         <source>choose the sheet&apos;s projection</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="194"/>
+        <location filename="../plugin/autogeoref.py" line="197"/>
         <source>empty: the coordinates printed in the margins are read</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="125"/>
+        <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...), a raster, or a layer of areas or lines (water, buildings, roads: for a scanned map). The results are in its CRS. None: a scanned map is georeferenced by the grid printed on it.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>
@@ -619,17 +619,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="110"/>
+        <location filename="../processing/register_algorithm.py" line="111"/>
         <source>Registration</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="125"/>
+        <location filename="../processing/register_algorithm.py" line="126"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="132"/>
+        <location filename="../processing/register_algorithm.py" line="133"/>
         <source>Target raster (to georeference)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -679,82 +679,82 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146"/>
+        <location filename="../processing/register_algorithm.py" line="148"/>
         <source>Georeferenced raster</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="147"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>GCP points</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="151"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="151"/>
         <source>GCP points (*.points)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>VRT (*.vrt)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="155"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>Report</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="155"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>JSON (*.json)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="162"/>
+        <location filename="../processing/register_algorithm.py" line="164"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="163"/>
+        <location filename="../processing/register_algorithm.py" line="165"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="164"/>
+        <location filename="../processing/register_algorithm.py" line="166"/>
         <source>Number of GCPs</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="194"/>
+        <location filename="../processing/register_algorithm.py" line="196"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="248"/>
+        <location filename="../processing/register_algorithm.py" line="250"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="221"/>
+        <location filename="core_strings.py" line="228"/>
         <source>Register raster (SIFT baseline)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="139"/>
+        <location filename="core_strings.py" line="146"/>
         <source>Register satellite image (RILBP, rotation-invariant)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="157"/>
+        <location filename="core_strings.py" line="164"/>
         <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
         <translation type="unfinished"></translation>
     </message>
@@ -769,27 +769,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="160"/>
+        <location filename="../processing/register_algorithm.py" line="162"/>
         <source>Verdict of the independent check</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="161"/>
+        <location filename="../processing/register_algorithm.py" line="163"/>
         <source>Method that produced the result</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="251"/>
+        <location filename="../processing/register_algorithm.py" line="253"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="314"/>
+        <location filename="../processing/register_algorithm.py" line="318"/>
         <source>Verified by an independent check: {} of {} sites agree; estimated error within {}.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="317"/>
+        <location filename="../processing/register_algorithm.py" line="321"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -804,132 +804,132 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="169"/>
+        <location filename="core_strings.py" line="176"/>
         <source>Register across modalities at any rotation and scale</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="187"/>
+        <location filename="core_strings.py" line="194"/>
         <source>What the SAR (target) raster holds: amplitude, intensity or db.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="188"/>
+        <location filename="core_strings.py" line="195"/>
         <source>Lee speckle filter on the SAR image (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="189"/>
+        <location filename="core_strings.py" line="196"/>
         <source>Lee window side, px (not given; 7).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="190"/>
+        <location filename="core_strings.py" line="197"/>
         <source>Equivalent number of looks of the SAR image (not given; 1).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="191"/>
+        <location filename="core_strings.py" line="198"/>
         <source>GGS window shape alpha (Shui &amp; Cheng&apos;s practical setting).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="192"/>
+        <location filename="core_strings.py" line="199"/>
         <source>GGS window width beta, px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="193"/>
+        <location filename="core_strings.py" line="200"/>
         <source>GGS window length sigma_x, px (l_f = 13).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="194"/>
+        <location filename="core_strings.py" line="201"/>
         <source>GGS orientations P (not given; 8).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="195"/>
+        <location filename="core_strings.py" line="202"/>
         <source>Hysteresis low threshold on 1 - ratio (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="196"/>
+        <location filename="core_strings.py" line="203"/>
         <source>Hysteresis high threshold on 1 - ratio (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="197"/>
+        <location filename="core_strings.py" line="204"/>
         <source>Edge components smaller than this are removed (the thesis: 65).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="198"/>
+        <location filename="core_strings.py" line="205"/>
         <source>Radon peaks taken before clustering (not given; 40).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="199"/>
+        <location filename="core_strings.py" line="206"/>
         <source>Radon angle step, degrees (MATLAB&apos;s default 1).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="200"/>
+        <location filename="core_strings.py" line="207"/>
         <source>Fewest edge pixels on a line; 0 = Sui et al.&apos;s 15 px per 256 px of image side.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="201"/>
+        <location filename="core_strings.py" line="208"/>
         <source>Lines closer than this in angle ... (not given; 5).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="202"/>
+        <location filename="core_strings.py" line="209"/>
         <source>... and this in offset are one line (not given; 10).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="203"/>
+        <location filename="core_strings.py" line="210"/>
         <source>Line pairs crossing at less than this are not intersected (Sui et al.).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="227"/>
+        <location filename="core_strings.py" line="234"/>
         <source>Eigenvector matching, VSPM, or their fusion (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="205"/>
+        <location filename="core_strings.py" line="212"/>
         <source>Fusion rule (not given): score-level sum, or cascade (VSPM&apos;s proximity inside eigenvector matching).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="206"/>
+        <location filename="core_strings.py" line="213"/>
         <source>Weight of the eigenvector score in the score-level fusion.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="207"/>
+        <location filename="core_strings.py" line="214"/>
         <source>Eigenvector proximity sigma as a fraction of each point set&apos;s RMS spread (not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="208"/>
+        <location filename="core_strings.py" line="215"/>
         <source>VSPM proximity matrix: as printed (eq. 2-73), laplacian or gaussian.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="209"/>
+        <location filename="core_strings.py" line="216"/>
         <source>Crossing angles of matched intersections differ by less (the thesis).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="204"/>
+        <location filename="core_strings.py" line="211"/>
         <source>Shapiro-Brady eigenvector matching alone (the thesis&apos;s baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="210"/>
+        <location filename="core_strings.py" line="217"/>
         <source>VSPM alone (the thesis&apos;s baseline).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1094,302 +1094,302 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="180"/>
+        <location filename="core_strings.py" line="187"/>
         <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does (the paper starts from the original image).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="183"/>
+        <location filename="core_strings.py" line="190"/>
         <source>Dual matching: both directions pass the ratio test (the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="211"/>
+        <location filename="core_strings.py" line="218"/>
         <source>NDSS+SIFT: the paper&apos;s ablation without phase congruency.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="185"/>
+        <location filename="core_strings.py" line="192"/>
         <source>Gaussian scale space (the paper&apos;s SIFT baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="186"/>
+        <location filename="core_strings.py" line="193"/>
         <source>No phase congruency in the baseline.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="179"/>
+        <location filename="core_strings.py" line="186"/>
         <source>Bilateral-filter scale space (BFSIFT).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="181"/>
+        <location filename="core_strings.py" line="188"/>
         <source>No phase congruency in BFSIFT.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="182"/>
+        <location filename="core_strings.py" line="189"/>
         <source>BFSIFT skips the finest scale.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="212"/>
+        <location filename="core_strings.py" line="219"/>
         <source>Strongest keypoints kept per image.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="213"/>
+        <location filename="core_strings.py" line="220"/>
         <source>FAST corner threshold (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="214"/>
+        <location filename="core_strings.py" line="221"/>
         <source>Pyramid levels, scale factor 1.2 (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="215"/>
+        <location filename="core_strings.py" line="222"/>
         <source>Nearest/second-nearest Hamming distance ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="147"/>
+        <location filename="core_strings.py" line="154"/>
         <source>Cross-check of matches: none, mutual or dual-ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="216"/>
+        <location filename="core_strings.py" line="223"/>
         <source>Strongest SIFT keypoints kept per image (0 = all).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="217"/>
+        <location filename="core_strings.py" line="224"/>
         <source>Nearest/second-nearest distance ratio (as the SIFT baseline).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="218"/>
+        <location filename="core_strings.py" line="225"/>
         <source>Correspondences per side of the grid that carries the shift.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="219"/>
+        <location filename="core_strings.py" line="226"/>
         <source>Lowest accepted normalised correlation peak.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="220"/>
+        <location filename="core_strings.py" line="227"/>
         <source>Strongest FAST corners kept per image (RIFT: 5000).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="141"/>
+        <location filename="core_strings.py" line="148"/>
         <source>Strongest CenSurE keypoints kept per image (the paper: 2500).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="142"/>
+        <location filename="core_strings.py" line="149"/>
         <source>Smallest |CenSurE response| in grey levels (gap: paper uses CenSurE defaults without values).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="143"/>
+        <location filename="core_strings.py" line="150"/>
         <source>CenSurE&apos;s edge test limit on trace^2/det (Agrawal et al. 2008).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="144"/>
+        <location filename="core_strings.py" line="151"/>
         <source>Region radius = factor x half the outer octagon (gap in the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="145"/>
+        <location filename="core_strings.py" line="152"/>
         <source>Product: quadratic sub-pixel keypoint positions (CenSurE keeps whole pixels).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="146"/>
+        <location filename="core_strings.py" line="153"/>
         <source>Nearest/second-nearest distance ratio (gap: the paper&apos;s rule is not given).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="148"/>
+        <location filename="core_strings.py" line="155"/>
         <source>LBP neighbour radius in region pixels (gap; the paper&apos;s figure shows 1; 2 keeps codes stable under keypoint and resampling jitter).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="149"/>
+        <location filename="core_strings.py" line="156"/>
         <source>Product: Gaussian sigma (region pixels) before coding; the paper has none, and radius-1 codes on raw pixels flip on sensor noise.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="150"/>
+        <location filename="core_strings.py" line="157"/>
         <source>CS-LBP threshold T in grey levels (gap; 0 = exact gain/offset invariance).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="151"/>
+        <location filename="core_strings.py" line="158"/>
         <source>Ring weight: literal 1-(d/h)^2 (the paper) or border 1-(2d/h)^2.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="228"/>
+        <location filename="core_strings.py" line="235"/>
         <source>Faithful: whole-pixel CenSurE positions, as the paper.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="229"/>
+        <location filename="core_strings.py" line="236"/>
         <source>Faithful: radius 1, the paper&apos;s Fig. 1.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="230"/>
+        <location filename="core_strings.py" line="237"/>
         <source>Faithful: no smoothing, as the paper.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="184"/>
+        <location filename="core_strings.py" line="191"/>
         <source>Faithful: whole-pixel CenSurE positions, as in the paper&apos;s comparison.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="159"/>
+        <location filename="core_strings.py" line="166"/>
         <source>Sobel magnitude threshold T (0..255; gap in the paper, default from a sweep).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="160"/>
+        <location filename="core_strings.py" line="167"/>
         <source>Hamming distance under which a keypoint with a near-duplicate in its own image is removed (gap; from a sweep).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="161"/>
+        <location filename="core_strings.py" line="168"/>
         <source>Gradient magnitude: l1 = 0.5|Gx|+0.5|Gy| (OpenCV tutorial, the spec&apos;s reading) or l2 = sqrt(Gx^2+Gy^2)/sqrt(2), which does not change with edge direction.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="162"/>
+        <location filename="core_strings.py" line="169"/>
         <source>to-zero keeps magnitudes above T (the paper); soft subtracts T, so the edge image has no jumps at the threshold for the DoG to fire on.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="163"/>
+        <location filename="core_strings.py" line="170"/>
         <source>Resolution at which the DoG pyramid starts (2 = OpenCV SIFT&apos;s upsampled base, the paper&apos;s; 1 = full resolution, 4x less work).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="164"/>
+        <location filename="core_strings.py" line="171"/>
         <source>Strongest DoG keypoints kept per image (0 = all, as the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="165"/>
+        <location filename="core_strings.py" line="172"/>
         <source>SIFT DoG contrast threshold on the edge image (OpenCV default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="166"/>
+        <location filename="core_strings.py" line="173"/>
         <source>Describe each keypoint on the pyramid level matching its SIFT size (the paper uses a fixed 31-px patch, which breaks beyond ~1.5x scale).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="167"/>
+        <location filename="core_strings.py" line="174"/>
         <source>Lowe ratio on Hamming distances (1 = off, as the paper).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="168"/>
+        <location filename="core_strings.py" line="175"/>
         <source>Spec Appendix B (not in the paper): keep matches at the peaks of the angle and log-scale difference histograms.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="231"/>
+        <location filename="core_strings.py" line="238"/>
         <source>Faithful: OpenCV tutorial magnitude 0.5|Gx|+0.5|Gy|.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="232"/>
+        <location filename="core_strings.py" line="239"/>
         <source>Faithful: threshold-to-zero.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="233"/>
+        <location filename="core_strings.py" line="240"/>
         <source>Faithful: OpenCV SIFT as is (upsampled base).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="234"/>
+        <location filename="core_strings.py" line="241"/>
         <source>Faithful: every DoG keypoint.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="235"/>
+        <location filename="core_strings.py" line="242"/>
         <source>Faithful: one 31-px patch at full resolution for every keypoint.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="236"/>
+        <location filename="core_strings.py" line="243"/>
         <source>Faithful: mutual nearest neighbours without a ratio test.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="223"/>
+        <location filename="core_strings.py" line="230"/>
         <source>Strongest keypoints kept per image (0 = all).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="224"/>
+        <location filename="core_strings.py" line="231"/>
         <source>DoG contrast threshold (OpenCV default, Lowe 2004).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="225"/>
+        <location filename="core_strings.py" line="232"/>
         <source>Edge-response ratio limit (Lowe 2004).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="226"/>
+        <location filename="core_strings.py" line="233"/>
         <source>Lowe&apos;s nearest/second-nearest distance ratio.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="171"/>
+        <location filename="core_strings.py" line="178"/>
         <source>Longest reference side for feature extraction, px: enough detail for RIFT features, and their cost.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="172"/>
+        <location filename="core_strings.py" line="179"/>
         <source>Pyramid levels (factors 2^-k/2) per image; 3 covers scales 1/2 to 2.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="173"/>
+        <location filename="core_strings.py" line="180"/>
         <source>Keypoints kept at the first level (0.7 and 0.5 times that at the next two).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="174"/>
+        <location filename="core_strings.py" line="181"/>
         <source>Rotation-scale hypotheses checked densely (10 gave nothing more).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="175"/>
+        <location filename="core_strings.py" line="182"/>
         <source>Hypotheses refined by local RIFT (5 gave nothing more).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="176"/>
+        <location filename="core_strings.py" line="183"/>
         <source>Longest reference side for the dense check, px: keeps its 30 FFT trials per hypothesis cheap; where CFOG separated right from wrong poses best.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="177"/>
+        <location filename="core_strings.py" line="184"/>
         <source>Longest reference side for local RIFT matching, px.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="178"/>
+        <location filename="core_strings.py" line="185"/>
         <source>Fewest local-RIFT inliers for a refined hypothesis.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1409,22 +1409,22 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="157"/>
+        <location filename="../processing/register_algorithm.py" line="159"/>
         <source>HTML files (*.html)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="239"/>
+        <location filename="../processing/register_algorithm.py" line="241"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="257"/>
+        <location filename="../processing/register_algorithm.py" line="259"/>
         <source>Invalid parameter: {}</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="263"/>
+        <location filename="../processing/register_algorithm.py" line="265"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1499,7 +1499,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="135"/>
+        <location filename="../processing/register_algorithm.py" line="137"/>
         <source>Keep unverified results</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1514,17 +1514,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="157"/>
+        <location filename="../processing/register_algorithm.py" line="159"/>
         <source>Quality report (HTML)</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="292"/>
+        <location filename="../processing/register_algorithm.py" line="296"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="325"/>
+        <location filename="../processing/register_algorithm.py" line="329"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1564,7 +1564,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="119"/>
+        <location filename="../processing/register_algorithm.py" line="120"/>
         <source>References: {}</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1719,7 +1719,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="222"/>
+        <location filename="core_strings.py" line="229"/>
         <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1734,17 +1734,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="140"/>
+        <location filename="core_strings.py" line="147"/>
         <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="158"/>
+        <location filename="core_strings.py" line="165"/>
         <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="170"/>
+        <location filename="core_strings.py" line="177"/>
         <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1794,11 +1794,6 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="133"/>
-        <source>Reference raster or map layer (XYZ, WMS...)</source>
-        <translation type="unfinished"></translation>
-    </message>
-    <message>
         <location filename="core_strings.py" line="59"/>
         <source>Search area</source>
         <translation type="unfinished"></translation>
@@ -1814,12 +1809,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="301"/>
+        <location filename="../processing/register_algorithm.py" line="305"/>
         <source>on</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="319"/>
+        <location filename="../processing/register_algorithm.py" line="323"/>
         <source>May help: {} ({}).</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1829,47 +1824,47 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="152"/>
+        <location filename="core_strings.py" line="159"/>
         <source>Windows per side of the grid over the overlap.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="155"/>
+        <location filename="core_strings.py" line="162"/>
         <source>Share of a window&apos;s pixels that must be valid in both images.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="156"/>
+        <location filename="core_strings.py" line="163"/>
         <source>Lowest accepted phase-correlation peak of a window.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="237"/>
+        <location filename="core_strings.py" line="244"/>
         <source>Strongest keypoints kept per image (XFeat&apos;s default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="238"/>
+        <location filename="core_strings.py" line="245"/>
         <source>Cosine similarity a mutual nearest neighbour needs (XFeat&apos;s default).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="239"/>
+        <location filename="core_strings.py" line="246"/>
         <source>Turns of the target tried, either way, in steps of 45 degrees: 0 when the target is upright on the reference (resampled onto it by its georeferencing), 180 for any rotation.</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="240"/>
+        <location filename="core_strings.py" line="247"/>
         <source>Both images are matched shrunk alike to at most this many pixels each: XFeat describes at an eighth of the resolution it is given, and the full-resolution refinement restores the precision (four times faster than at the 4 Mpx working size).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="153"/>
+        <location filename="core_strings.py" line="160"/>
         <source>Side of each correlation window, working px (halved for small overlaps).</source>
         <translation type="unfinished"></translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="154"/>
+        <location filename="core_strings.py" line="161"/>
         <source>Longest side of the coarse whole-overlap correlation, px.</source>
         <translation type="unfinished"></translation>
     </message>
@@ -1891,6 +1886,46 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/catalogue.py" line="33"/>
         <source>Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Choose the sheet&apos;s CRS. The coordinates printed in its margins are read (Tesseract); where they cannot be, place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as printed (degrees, or metres of the national grid) and save the GCP points (.points) as hints. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each crossing becomes a GCP. The model (affine, a polynomial where the projection bends the lines, a thin plate spline where the paper is warped) is checked by predicting each grid line from the others: a result is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, saying why.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="134"/>
+        <source>Reference layer (raster, XYZ, WMS, areas or lines)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="142"/>
+        <source>Smallest region kept, working px.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="145"/>
+        <source>At most this many target regions, the largest, score a similarity: a bound on the search&apos;s time where a scan holds tens of thousands (letters, specks).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="139"/>
+        <source>Register a scanned map onto a layer of areas (regions)</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="140"/>
+        <source>Registers a target whose closed shapes (lakes, blocks, fields) the reference shows too, in another look: a scanned map onto a layer of the areas it shows (a vector layer of water or buildings, drawn as a raster), at any rotation and scale. The regions of each image, cut at many grey levels, are matched by where they lie together; their centroids are refined at full resolution with CFOG and the result checked independently.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="141"/>
+        <source>Grey levels (percentiles) at which regions are cut from each image.</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="143"/>
+        <source>Each image is matched at most this size (the larger of the two is brought to the smaller&apos;s pixel count first).</source>
+        <translation type="unfinished"></translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="144"/>
+        <source>Largest target regions each paired with every large reference region to propose a similarity.</source>
         <translation type="unfinished"></translation>
     </message>
 </context>

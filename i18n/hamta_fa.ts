@@ -94,17 +94,17 @@
         <translation>{}، رستر «{}» را باز کنید (پرونده ◂ باز کردن رستر…)، سپس پرونده ◂ بارگذاری نقاط کنترل… و مسیر پروندهٔ نقاط کنترل را که اکنون در حافظهٔ موقت است بچسبانید: {}</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="258"/>
+        <location filename="../plugin/autogeoref.py" line="261"/>
         <source>Auto-georeference</source>
         <translation>زمین‌مرجع‌سازی خودکار</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="116"/>
+        <location filename="../plugin/autogeoref.py" line="117"/>
         <source>The raster file to georeference (a raster layer read by GDAL).</source>
         <translation>پروندهٔ رستری که باید زمین‌مرجع شود (لایهٔ رستری که GDAL می‌خواند).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="117"/>
+        <location filename="../plugin/autogeoref.py" line="118"/>
         <source>Target raster</source>
         <translation>رستر هدف</translation>
     </message>
@@ -114,22 +114,22 @@
         <translation type="obsolete">لایهٔ زمین‌مرجعی که هدف روی آن تطبیق داده می‌شود: یک نقشهٔ پایه (کاشی‌های XYZ، WMS، WMTS...) یا یک رستر. نتایج در سامانهٔ مختصات آن است.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="126"/>
+        <location filename="../plugin/autogeoref.py" line="129"/>
         <source>Reference layer</source>
         <translation>لایهٔ مرجع</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="141"/>
+        <location filename="../plugin/autogeoref.py" line="144"/>
         <source>On by default for a target without georeferencing (the map canvas extent). On for a georeferenced target, Hamta ignores the target&apos;s georeferencing and searches here.</source>
         <translation>برای هدفِ بی‌زمین‌مرجع به‌طور پیش‌فرض روشن است (محدودهٔ بوم نقشه). اگر برای هدفِ زمین‌مرجع روشن شود، همتا زمین‌مرجعِ هدف را نادیده می‌گیرد و این‌جا را می‌جوید.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="151"/>
+        <location filename="../plugin/autogeoref.py" line="154"/>
         <source>Search area, {} (where to look for the target)</source>
         <translation>محدودهٔ جست‌وجو، {} (جایی که هدف جست‌وجو می‌شود)</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="155"/>
+        <location filename="../plugin/autogeoref.py" line="158"/>
         <source>A folder for the warped raster, the GCPs (GeoPackage and .points) and the reports; files of an earlier run there are replaced.</source>
         <translation>پوشه‌ای برای رستر تبدیل‌شده، نقاط کنترل (GeoPackage و ‎.points) و گزارش‌ها؛ پرونده‌های اجرای قبلی در آن جایگزین می‌شوند.</translation>
     </message>
@@ -139,37 +139,37 @@
         <translation type="obsolete">نگه داشتن نتیجهٔ تأییدنشده</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="158"/>
+        <location filename="../plugin/autogeoref.py" line="161"/>
         <source>Write the georeferenced raster even when the independent check does not confirm the result (it is then marked NOT VERIFIED).</source>
         <translation>رستر زمین‌مرجع را حتی وقتی بررسی مستقل نتیجه را تأیید نمی‌کند بنویس (با برچسب «تأیید نشده»).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="160"/>
+        <location filename="../plugin/autogeoref.py" line="163"/>
         <source>Output folder</source>
         <translation>پوشهٔ خروجی</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="164"/>
+        <location filename="../plugin/autogeoref.py" line="167"/>
         <source>Run</source>
         <translation>اجرا</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="237"/>
+        <location filename="../plugin/autogeoref.py" line="240"/>
         <source>Choose the raster to georeference (add it to the project first).</source>
         <translation>رستری را که باید زمین‌مرجع شود انتخاب کنید (نخست آن را به پروژه بیفزایید).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="245"/>
+        <location filename="../plugin/autogeoref.py" line="248"/>
         <source>Choose a reference layer other than the target: a basemap or a georeferenced raster.</source>
         <translation>لایهٔ مرجعی جز هدف انتخاب کنید: یک نقشهٔ پایه یا رستری زمین‌مرجع.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="247"/>
+        <location filename="../plugin/autogeoref.py" line="250"/>
         <source>Choose an output folder.</source>
         <translation>یک پوشهٔ خروجی انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="250"/>
+        <location filename="../plugin/autogeoref.py" line="253"/>
         <source>&apos;{}&apos; has no georeferencing: turn on the search area (the map canvas extent by default) so that Hamta knows where to look in &apos;{}&apos;.</source>
         <translation>«{}» زمین‌مرجع ندارد: محدودهٔ جست‌وجو را روشن کنید (به‌طور پیش‌فرض محدودهٔ بوم نقشه) تا همتا بداند در «{}» کجا را بجوید.</translation>
     </message>
@@ -304,7 +304,7 @@
         <translation>محدودهٔ جست‌وجو</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="157"/>
+        <location filename="../plugin/autogeoref.py" line="160"/>
         <source>Keep unverified results</source>
         <translation>نگه‌داشتن نتایج تأییدنشده</translation>
     </message>
@@ -341,25 +341,25 @@
     <message>
         <location filename="../plugin/autogeoref.py" line="123"/>
         <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...) or a raster. The results are in its CRS. None: a scanned map is georeferenced by the grid printed on it.</source>
-        <translation>لایهٔ زمین‌مرجع که هدف روی آن تطبیق داده می‌شود: یک نقشهٔ پایه (کاشی‌های XYZ، WMS، WMTS...) یا یک رستر. نتایج در CRS آن است. هیچ‌کدام: نقشهٔ اسکن‌شده با شبکهٔ چاپ‌شده روی آن زمین‌مرجع می‌شود.</translation>
+        <translation type="obsolete">لایهٔ زمین‌مرجع که هدف روی آن تطبیق داده می‌شود: یک نقشهٔ پایه (کاشی‌های XYZ، WMS، WMTS...) یا یک رستر. نتایج در CRS آن است. هیچ‌کدام: نقشهٔ اسکن‌شده با شبکهٔ چاپ‌شده روی آن زمین‌مرجع می‌شود.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="184"/>
+        <location filename="../plugin/autogeoref.py" line="187"/>
         <source>By the sheet&apos;s own grid (no reference layer)</source>
         <translation>با شبکهٔ خود برگه (بدون لایهٔ مرجع)</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="190"/>
+        <location filename="../plugin/autogeoref.py" line="193"/>
         <source>The sheet&apos;s projection: the results are in it (sheets rarely print it).</source>
         <translation>تصویر نقشهٔ برگه: نتایج در آن است (برگه‌ها به‌ندرت آن را چاپ می‌کنند).</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="191"/>
+        <location filename="../plugin/autogeoref.py" line="194"/>
         <source>CRS of the sheet</source>
         <translation>CRS برگه</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="193"/>
+        <location filename="../plugin/autogeoref.py" line="196"/>
         <source>GCP points (*.points)</source>
         <translation>نقاط کنترل (*.points)</translation>
     </message>
@@ -369,12 +369,12 @@
         <translation type="obsolete">دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز گذاشته شده‌اند، با مختصاتی که چاپ شده، ذخیره‌شده به‌صورت نقاط کنترل.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="198"/>
+        <location filename="../plugin/autogeoref.py" line="201"/>
         <source>Hints (.points)</source>
         <translation>راهنماها (.points)</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="240"/>
+        <location filename="../plugin/autogeoref.py" line="243"/>
         <source>Choose the CRS of the sheet, or a reference layer.</source>
         <translation>CRS برگه یا یک لایهٔ مرجع را انتخاب کنید.</translation>
     </message>
@@ -384,24 +384,29 @@
         <translation type="obsolete">راهنماها را انتخاب کنید: دو یا سه تقاطع که در زمین‌مرجع‌ساز با مختصاتشان گذاشته و به‌صورت نقاط کنترل (.points) ذخیره شده‌اند؛ یا یک لایهٔ مرجع انتخاب کنید.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="195"/>
+        <location filename="../plugin/autogeoref.py" line="198"/>
         <source>Two or three crossings of the printed lines placed roughly in the Georeferencer with their coordinates as printed, saved as GCP points; empty: the labels printed in the sheet&apos;s margins are read.</source>
         <translation>دو یا سه تقاطع خطوط چاپ‌شده که تقریبی در زمین‌مرجع‌ساز با مختصاتی که چاپ شده گذاشته و به‌صورت نقاط کنترل ذخیره شده‌اند؛ خالی: برچسب‌های چاپ‌شده در حاشیهٔ برگه خوانده می‌شوند.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="242"/>
+        <location filename="../plugin/autogeoref.py" line="245"/>
         <source>The hints file does not exist: choose the GCP points (.points) saved in the Georeferencer, or leave it empty to have the sheet&apos;s printed labels read.</source>
         <translation>پروندهٔ راهنماها وجود ندارد: نقاط کنترل (.points) ذخیره‌شده در زمین‌مرجع‌ساز را انتخاب کنید، یا خالی بگذارید تا برچسب‌های چاپ‌شدهٔ برگه خوانده شوند.</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="188"/>
+        <location filename="../plugin/autogeoref.py" line="191"/>
         <source>choose the sheet&apos;s projection</source>
         <translation>تصویر نقشهٔ برگه را انتخاب کنید</translation>
     </message>
     <message>
-        <location filename="../plugin/autogeoref.py" line="194"/>
+        <location filename="../plugin/autogeoref.py" line="197"/>
         <source>empty: the coordinates printed in the margins are read</source>
         <translation>خالی: مختصات چاپ‌شده در حاشیه خوانده می‌شود</translation>
+    </message>
+    <message>
+        <location filename="../plugin/autogeoref.py" line="125"/>
+        <source>The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, WMTS...), a raster, or a layer of areas or lines (water, buildings, roads: for a scanned map). The results are in its CRS. None: a scanned map is georeferenced by the grid printed on it.</source>
+        <translation>لایهٔ زمین‌مرجعی که هدف روی آن تطبیق داده می‌شود: یک نقشهٔ پایه (کاشی‌های XYZ، WMS، WMTS...)، یک رستر، یا لایه‌ای از سطوح یا خطوط (آب، ساختمان‌ها، راه‌ها: برای نقشهٔ اسکن‌شده). نتایج در CRS آن است. هیچ: نقشهٔ اسکن‌شده با شبکهٔ چاپ‌شده روی آن زمین‌مرجع می‌شود.</translation>
     </message>
 </context>
 <context>
@@ -716,17 +721,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>نادیده گرفته شود</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="110"/>
+        <location filename="../processing/register_algorithm.py" line="111"/>
         <source>Registration</source>
         <translation>ثبت تصویر</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="125"/>
+        <location filename="../processing/register_algorithm.py" line="126"/>
         <source>georeference,coregistration,registration,GCP,match,align,warp</source>
         <translation>زمین‌مرجع‌سازی,هم‌ثبت‌سازی,ثبت,نقطه کنترل,تطابق,هم‌ترازی,تبدیل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="132"/>
+        <location filename="../processing/register_algorithm.py" line="133"/>
         <source>Target raster (to georeference)</source>
         <translation>رستر هدف (برای زمین‌مرجع‌سازی)</translation>
     </message>
@@ -776,82 +781,82 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>بذر تصادفی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="146"/>
+        <location filename="../processing/register_algorithm.py" line="148"/>
         <source>Georeferenced raster</source>
         <translation>رستر زمین‌مرجع‌شده</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="147"/>
+        <location filename="../processing/register_algorithm.py" line="149"/>
         <source>GCP points</source>
         <translation>نقاط کنترل زمینی</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="151"/>
         <source>GCP file for the QGIS Georeferencer</source>
         <translation>پرونده نقاط کنترل برای Georeferencer کیوجی‌آی‌اس</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="149"/>
+        <location filename="../processing/register_algorithm.py" line="151"/>
         <source>GCP points (*.points)</source>
         <translation>نقاط کنترل (*.points)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>Target with GCPs, not resampled (VRT)</source>
         <translation>تصویر هدف همراه نقاط کنترل، بدون بازنمونه‌برداری (VRT)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="152"/>
+        <location filename="../processing/register_algorithm.py" line="154"/>
         <source>VRT (*.vrt)</source>
         <translation>VRT (*.vrt)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="155"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>Report</source>
         <translation>گزارش</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="155"/>
+        <location filename="../processing/register_algorithm.py" line="157"/>
         <source>JSON (*.json)</source>
         <translation>JSON (*.json)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="162"/>
+        <location filename="../processing/register_algorithm.py" line="164"/>
         <source>RMSE of the GCPs (reference pixels)</source>
         <translation>RMSE نقاط کنترل (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="163"/>
+        <location filename="../processing/register_algorithm.py" line="165"/>
         <source>Leave-one-out RMS (reference pixels)</source>
         <translation>RMS به روش حذف تک‌نقطه (پیکسل مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="164"/>
+        <location filename="../processing/register_algorithm.py" line="166"/>
         <source>Number of GCPs</source>
         <translation>تعداد نقاط کنترل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="194"/>
+        <location filename="../processing/register_algorithm.py" line="196"/>
         <source>{} must be a raster file GDAL can read, not a &apos;{}&apos; layer.</source>
         <translation>{} باید پرونده رستری قابل خواندن با GDAL باشد، نه لایه‌ای از نوع «{}».</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="248"/>
+        <location filename="../processing/register_algorithm.py" line="250"/>
         <source>Registration canceled; no outputs were written.</source>
         <translation>ثبت تصویر لغو شد؛ هیچ خروجی‌ای نوشته نشد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="221"/>
+        <location filename="core_strings.py" line="228"/>
         <source>Register raster (SIFT baseline)</source>
         <translation>ثبت رستر (پایه SIFT)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="139"/>
+        <location filename="core_strings.py" line="146"/>
         <source>Register satellite image (RILBP, rotation-invariant)</source>
         <translation>ثبت تصویر ماهواره‌ای (RILBP، مستقل از دوران)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="157"/>
+        <location filename="core_strings.py" line="164"/>
         <source>Register aerial image onto satellite image (SIBRIF, fast)</source>
         <translation>ثبت تصویر هوایی روی تصویر ماهواره‌ای (SIBRIF، سریع)</translation>
     </message>
@@ -866,27 +871,27 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>ثبت تصویر SAR روی تصویر نوری</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="160"/>
+        <location filename="../processing/register_algorithm.py" line="162"/>
         <source>Verdict of the independent check</source>
         <translation>رأی بررسی مستقل</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="161"/>
+        <location filename="../processing/register_algorithm.py" line="163"/>
         <source>Method that produced the result</source>
         <translation>روشی که نتیجه را به دست داد</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="251"/>
+        <location filename="../processing/register_algorithm.py" line="253"/>
         <source>The registration was not verified: {}. No georeferenced output was written; set &apos;Keep unverified results&apos; to write it anyway.</source>
         <translation>ثبت تصویر تأیید نشد: {}. هیچ خروجی زمین‌مرجع‌شده‌ای نوشته نشد؛ برای نوشتن آن در هر صورت، گزینهٔ «نگه‌داشتن نتایج تأییدنشده» را فعال کنید.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="314"/>
+        <location filename="../processing/register_algorithm.py" line="318"/>
         <source>Verified by an independent check: {} of {} sites agree; estimated error within {}.</source>
         <translation>تأییدشده با بررسی مستقل: {} محل از {} محل هم‌خوان‌اند؛ خطای برآوردشده حداکثر {}.</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="317"/>
+        <location filename="../processing/register_algorithm.py" line="321"/>
         <source>NOT VERIFIED ({}): {}</source>
         <translation>تأیید نشد ({}): {}</translation>
     </message>
@@ -901,132 +906,132 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>رستر هدف را روی رستر مرجع ثبت می‌کند و روش را خودش برمی‌گزیند: ابتدا تناظریاب سریع SIFT، سپس تناظریاب‌های ویژهٔ تصاویر با مدالیتهٔ متفاوت (SAR، فروسرخ، نقشه) و ویژهٔ SAR، تا جایی که نتیجه‌ای از یک بررسی مستقل سربلند بیرون آید. این بررسی دو رستر را در محل‌هایی پراکنده در سراسر ناحیهٔ همپوشانی مقایسه می‌کند، نه روی تطابق‌هایی که مدل با آن‌ها برازش شده است، حاصل را با آنچه هم‌ترازی‌های نادرستِ همین رسترها به دست می‌دهند می‌سنجد و برای خطای باقی‌مانده کران تعیین می‌کند. نتیجه‌ای که تأیید نشود نوشته نمی‌شود، مگر اینکه گزینهٔ «نگه‌داشتن نتایج تأییدنشده» فعال باشد؛ گزارش اجرا همهٔ روش‌های آزموده‌شده را همراه با رأی و زمان هر کدام فهرست می‌کند. هر یک از دیگر الگوریتم‌های این گروه فقط یک روش را اجرا می‌کند و برای کاربران متخصص است.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="169"/>
+        <location filename="core_strings.py" line="176"/>
         <source>Register across modalities at any rotation and scale</source>
         <translation>ثبت میان مدالیته‌های مختلف با هر دوران و مقیاس</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="187"/>
+        <location filename="core_strings.py" line="194"/>
         <source>What the SAR (target) raster holds: amplitude, intensity or db.</source>
         <translation>نوع مقادیر رستر SAR (هدف): دامنه (amplitude)، شدت (intensity) یا دسی‌بل (db).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="188"/>
+        <location filename="core_strings.py" line="195"/>
         <source>Lee speckle filter on the SAR image (the thesis).</source>
         <translation>فیلتر اسپکل لی روی تصویر SAR (طبق پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="189"/>
+        <location filename="core_strings.py" line="196"/>
         <source>Lee window side, px (not given; 7).</source>
         <translation>اندازهٔ ضلع پنجرهٔ لی، px (ذکر نشده؛ ۷).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="190"/>
+        <location filename="core_strings.py" line="197"/>
         <source>Equivalent number of looks of the SAR image (not given; 1).</source>
         <translation>تعداد نگاه معادل تصویر SAR (ذکر نشده؛ ۱).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="191"/>
+        <location filename="core_strings.py" line="198"/>
         <source>GGS window shape alpha (Shui &amp; Cheng&apos;s practical setting).</source>
         <translation>پارامتر شکل alpha پنجرهٔ GGS (تنظیم عملی Shui &amp; Cheng).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="192"/>
+        <location filename="core_strings.py" line="199"/>
         <source>GGS window width beta, px.</source>
         <translation>پهنای beta پنجرهٔ GGS، px.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="193"/>
+        <location filename="core_strings.py" line="200"/>
         <source>GGS window length sigma_x, px (l_f = 13).</source>
         <translation>طول sigma_x پنجرهٔ GGS، px (l_f = 13).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="194"/>
+        <location filename="core_strings.py" line="201"/>
         <source>GGS orientations P (not given; 8).</source>
         <translation>تعداد جهت‌های P در GGS (ذکر نشده؛ ۸).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="195"/>
+        <location filename="core_strings.py" line="202"/>
         <source>Hysteresis low threshold on 1 - ratio (not given).</source>
         <translation>آستانهٔ پایین هیسترزیس روی مقدار ۱ منهای نسبت (ذکر نشده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="196"/>
+        <location filename="core_strings.py" line="203"/>
         <source>Hysteresis high threshold on 1 - ratio (not given).</source>
         <translation>آستانهٔ بالای هیسترزیس روی مقدار ۱ منهای نسبت (ذکر نشده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="197"/>
+        <location filename="core_strings.py" line="204"/>
         <source>Edge components smaller than this are removed (the thesis: 65).</source>
         <translation>مؤلفه‌های همبند لبه که کوچک‌تر از این مقدارند حذف می‌شوند (پایان‌نامه: ۶۵).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="198"/>
+        <location filename="core_strings.py" line="205"/>
         <source>Radon peaks taken before clustering (not given; 40).</source>
         <translation>تعداد قله‌های رادون که پیش از خوشه‌بندی برداشته می‌شوند (ذکر نشده؛ ۴۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="199"/>
+        <location filename="core_strings.py" line="206"/>
         <source>Radon angle step, degrees (MATLAB&apos;s default 1).</source>
         <translation>گام زاویهٔ رادون، درجه (پیش‌فرض MATLAB: ۱).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="200"/>
+        <location filename="core_strings.py" line="207"/>
         <source>Fewest edge pixels on a line; 0 = Sui et al.&apos;s 15 px per 256 px of image side.</source>
         <translation>کمینهٔ تعداد پیکسل‌های لبه روی یک خط؛ ۰ = مقدار Sui et al.، یعنی ۱۵ px به ازای هر ۲۵۶ px از ضلع تصویر.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="201"/>
+        <location filename="core_strings.py" line="208"/>
         <source>Lines closer than this in angle ... (not given; 5).</source>
         <translation>خطوطی که از نظر زاویه نزدیک‌تر از این مقدارند ... (ذکر نشده؛ ۵).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="202"/>
+        <location filename="core_strings.py" line="209"/>
         <source>... and this in offset are one line (not given; 10).</source>
         <translation>... و از نظر فاصله از مبدأ نزدیک‌تر از این مقدار، یک خط به شمار می‌آیند (ذکر نشده؛ ۱۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="203"/>
+        <location filename="core_strings.py" line="210"/>
         <source>Line pairs crossing at less than this are not intersected (Sui et al.).</source>
         <translation>نقطهٔ تقاطع زوج خط‌هایی که با زاویه‌ای کمتر از این مقدار یکدیگر را قطع می‌کنند محاسبه نمی‌شود (Sui et al.).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="227"/>
+        <location filename="core_strings.py" line="234"/>
         <source>Eigenvector matching, VSPM, or their fusion (the thesis).</source>
         <translation>تناظریابی با بردار ویژه (eigenvector)، VSPM (vspm) یا تلفیق آن دو (fusion، طبق پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="205"/>
+        <location filename="core_strings.py" line="212"/>
         <source>Fusion rule (not given): score-level sum, or cascade (VSPM&apos;s proximity inside eigenvector matching).</source>
         <translation>قاعدهٔ تلفیق (ذکر نشده): جمع در سطح امتیاز (score)، یا آبشاری (cascade: ماتریس مجاورت VSPM درون تناظریابی بردار ویژه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="206"/>
+        <location filename="core_strings.py" line="213"/>
         <source>Weight of the eigenvector score in the score-level fusion.</source>
         <translation>وزن امتیاز بردار ویژه در تلفیق در سطح امتیاز.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="207"/>
+        <location filename="core_strings.py" line="214"/>
         <source>Eigenvector proximity sigma as a fraction of each point set&apos;s RMS spread (not given).</source>
         <translation>مقدار sigma مجاورت در تناظریابی بردار ویژه، به‌صورت کسری از پراکندگی RMS هر مجموعه نقطه (ذکر نشده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="208"/>
+        <location filename="core_strings.py" line="215"/>
         <source>VSPM proximity matrix: as printed (eq. 2-73), laplacian or gaussian.</source>
         <translation>ماتریس مجاورت VSPM: مطابق متن چاپ‌شده (printed، معادلهٔ 2-73)، لاپلاسی (laplacian) یا گوسی (gaussian).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="209"/>
+        <location filename="core_strings.py" line="216"/>
         <source>Crossing angles of matched intersections differ by less (the thesis).</source>
         <translation>زاویه‌های برخورد در تقاطع‌های متناظر کمتر از این مقدار با هم اختلاف دارند (طبق پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="204"/>
+        <location filename="core_strings.py" line="211"/>
         <source>Shapiro-Brady eigenvector matching alone (the thesis&apos;s baseline).</source>
         <translation>فقط تناظریابی بردار ویژهٔ Shapiro-Brady (روش پایهٔ پایان‌نامه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="210"/>
+        <location filename="core_strings.py" line="217"/>
         <source>VSPM alone (the thesis&apos;s baseline).</source>
         <translation>فقط VSPM (روش پایهٔ پایان‌نامه).</translation>
     </message>
@@ -1191,302 +1196,302 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>آزمون نسبت یک‌طرفه: تناظریابی با نسبت دوطرفه روی اسپکل تک‌نگاه تطابق‌های بسیار کمی نگه می‌دارد و RANSAC نقاط پرت اضافی را حذف می‌کند (مقاله: dual-ratio).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="180"/>
+        <location filename="core_strings.py" line="187"/>
         <source>Gaussian pre-smoothing to sigma_0 before the diffusion, as KAZE does (the paper starts from the original image).</source>
         <translation>پیش‌هموارسازی گوسی تا sigma_0 پیش از پخش، همان‌گونه که KAZE انجام می‌دهد (مقاله از تصویر اصلی شروع می‌کند).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="183"/>
+        <location filename="core_strings.py" line="190"/>
         <source>Dual matching: both directions pass the ratio test (the paper).</source>
         <translation>تناظریابی دوطرفه: هر دو جهت باید از آزمون نسبت بگذرند (طبق مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="211"/>
+        <location filename="core_strings.py" line="218"/>
         <source>NDSS+SIFT: the paper&apos;s ablation without phase congruency.</source>
         <translation>روش NDSS+SIFT: آزمایش حذفی مقاله، بدون همدوسی فاز.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="185"/>
+        <location filename="core_strings.py" line="192"/>
         <source>Gaussian scale space (the paper&apos;s SIFT baseline).</source>
         <translation>فضای مقیاس گوسی (روش پایهٔ SIFT در مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="186"/>
+        <location filename="core_strings.py" line="193"/>
         <source>No phase congruency in the baseline.</source>
         <translation>روش پایه از همدوسی فاز استفاده نمی‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="179"/>
+        <location filename="core_strings.py" line="186"/>
         <source>Bilateral-filter scale space (BFSIFT).</source>
         <translation>فضای مقیاس با فیلتر دوسویه (BFSIFT).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="181"/>
+        <location filename="core_strings.py" line="188"/>
         <source>No phase congruency in BFSIFT.</source>
         <translation>روش BFSIFT از همدوسی فاز استفاده نمی‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="182"/>
+        <location filename="core_strings.py" line="189"/>
         <source>BFSIFT skips the finest scale.</source>
         <translation>روش BFSIFT ریزترین مقیاس را کنار می‌گذارد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="212"/>
+        <location filename="core_strings.py" line="219"/>
         <source>Strongest keypoints kept per image.</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی که در هر تصویر نگه داشته می‌شوند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="213"/>
+        <location filename="core_strings.py" line="220"/>
         <source>FAST corner threshold (OpenCV default).</source>
         <translation>آستانهٔ گوشه‌یابی FAST (پیش‌فرض OpenCV).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="214"/>
+        <location filename="core_strings.py" line="221"/>
         <source>Pyramid levels, scale factor 1.2 (OpenCV default).</source>
         <translation>تعداد سطوح هرم، با ضریب مقیاس ۱٫۲ (پیش‌فرض OpenCV).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="215"/>
+        <location filename="core_strings.py" line="222"/>
         <source>Nearest/second-nearest Hamming distance ratio.</source>
         <translation>نسبت فاصلهٔ همینگ نزدیک‌ترین به دومین نزدیک‌ترین همسایه.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="147"/>
+        <location filename="core_strings.py" line="154"/>
         <source>Cross-check of matches: none, mutual or dual-ratio.</source>
         <translation>بررسی متقابل تطابق‌ها: بدون بررسی (none)، دوطرفه (mutual) یا نسبت دوطرفه (dual-ratio).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="216"/>
+        <location filename="core_strings.py" line="223"/>
         <source>Strongest SIFT keypoints kept per image (0 = all).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی SIFT که در هر تصویر نگه داشته می‌شوند (۰ = همه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="217"/>
+        <location filename="core_strings.py" line="224"/>
         <source>Nearest/second-nearest distance ratio (as the SIFT baseline).</source>
         <translation>نسبت فاصلهٔ نزدیک‌ترین به دومین نزدیک‌ترین همسایه (مانند روش پایهٔ SIFT).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="218"/>
+        <location filename="core_strings.py" line="225"/>
         <source>Correspondences per side of the grid that carries the shift.</source>
         <translation>تعداد نقاط تناظر در هر ضلع شبکه‌ای که جابه‌جایی به‌دست‌آمده را منتقل می‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="219"/>
+        <location filename="core_strings.py" line="226"/>
         <source>Lowest accepted normalised correlation peak.</source>
         <translation>کمترین قلهٔ همبستگی نرمال‌شدهٔ پذیرفتنی.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="220"/>
+        <location filename="core_strings.py" line="227"/>
         <source>Strongest FAST corners kept per image (RIFT: 5000).</source>
         <translation>تعداد قوی‌ترین گوشه‌های FAST که در هر تصویر نگه داشته می‌شوند (RIFT: ۵۰۰۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="141"/>
+        <location filename="core_strings.py" line="148"/>
         <source>Strongest CenSurE keypoints kept per image (the paper: 2500).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی CenSurE که در هر تصویر نگه داشته می‌شوند (مقاله: ۲۵۰۰).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="142"/>
+        <location filename="core_strings.py" line="149"/>
         <source>Smallest |CenSurE response| in grey levels (gap: paper uses CenSurE defaults without values).</source>
         <translation>کمترین مقدار |پاسخ CenSurE| بر حسب سطح خاکستری (نامشخص در مقاله: مقاله از پیش‌فرض‌های CenSurE بدون ذکر مقدارشان استفاده می‌کند).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="143"/>
+        <location filename="core_strings.py" line="150"/>
         <source>CenSurE&apos;s edge test limit on trace^2/det (Agrawal et al. 2008).</source>
         <translation>حد آزمون لبهٔ CenSurE روی trace^2/det (Agrawal et al. 2008).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="144"/>
+        <location filename="core_strings.py" line="151"/>
         <source>Region radius = factor x half the outer octagon (gap in the paper).</source>
         <translation>شعاع ناحیه = ضریب × نصف هشت‌ضلعی بیرونی (نامشخص در مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="145"/>
+        <location filename="core_strings.py" line="152"/>
         <source>Product: quadratic sub-pixel keypoint positions (CenSurE keeps whole pixels).</source>
         <translation>نسخهٔ محصول: موقعیت زیرپیکسلی نقاط کلیدی با برازش درجه دو (CenSurE موقعیت‌ها را در پیکسل‌های صحیح نگه می‌دارد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="146"/>
+        <location filename="core_strings.py" line="153"/>
         <source>Nearest/second-nearest distance ratio (gap: the paper&apos;s rule is not given).</source>
         <translation>نسبت فاصلهٔ نزدیک‌ترین به دومین نزدیک‌ترین همسایه (نامشخص در مقاله: قاعدهٔ مقاله ذکر نشده است).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="148"/>
+        <location filename="core_strings.py" line="155"/>
         <source>LBP neighbour radius in region pixels (gap; the paper&apos;s figure shows 1; 2 keeps codes stable under keypoint and resampling jitter).</source>
         <translation>شعاع همسایگی LBP بر حسب پیکسل ناحیه (نامشخص در مقاله؛ شکل مقاله ۱ را نشان می‌دهد؛ مقدار ۲ کدها را در برابر لرزش موقعیت نقاط کلیدی و بازنمونه‌برداری پایدار نگه می‌دارد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="149"/>
+        <location filename="core_strings.py" line="156"/>
         <source>Product: Gaussian sigma (region pixels) before coding; the paper has none, and radius-1 codes on raw pixels flip on sensor noise.</source>
         <translation>نسخهٔ محصول: sigma گوسی (پیکسل ناحیه) پیش از کدگذاری؛ مقاله هموارسازی ندارد و کدهای شعاع ۱ روی پیکسل‌های خام با نویز حسگر وارونه می‌شوند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="150"/>
+        <location filename="core_strings.py" line="157"/>
         <source>CS-LBP threshold T in grey levels (gap; 0 = exact gain/offset invariance).</source>
         <translation>آستانهٔ T در CS-LBP بر حسب سطح خاکستری (نامشخص در مقاله؛ ۰ = ناوردایی دقیق نسبت به بهره و آفست).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="151"/>
+        <location filename="core_strings.py" line="158"/>
         <source>Ring weight: literal 1-(d/h)^2 (the paper) or border 1-(2d/h)^2.</source>
         <translation>وزن حلقه: literal با 1-(d/h)^2 (طبق مقاله) یا border با 1-(2d/h)^2.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="228"/>
+        <location filename="core_strings.py" line="235"/>
         <source>Faithful: whole-pixel CenSurE positions, as the paper.</source>
         <translation>مطابق مقاله: موقعیت‌های CenSurE در پیکسل‌های صحیح، همان‌گونه که در مقاله آمده.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="229"/>
+        <location filename="core_strings.py" line="236"/>
         <source>Faithful: radius 1, the paper&apos;s Fig. 1.</source>
         <translation>مطابق مقاله: شعاع ۱، طبق شکل ۱ مقاله.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="230"/>
+        <location filename="core_strings.py" line="237"/>
         <source>Faithful: no smoothing, as the paper.</source>
         <translation>مطابق مقاله: بدون هموارسازی، همان‌گونه که در مقاله آمده.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="184"/>
+        <location filename="core_strings.py" line="191"/>
         <source>Faithful: whole-pixel CenSurE positions, as in the paper&apos;s comparison.</source>
         <translation>مطابق مقاله: موقعیت‌های CenSurE در پیکسل‌های صحیح، همان‌گونه که در مقایسهٔ مقاله آمده.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="159"/>
+        <location filename="core_strings.py" line="166"/>
         <source>Sobel magnitude threshold T (0..255; gap in the paper, default from a sweep).</source>
         <translation>آستانهٔ T برای بزرگی گرادیان سوبل (0..255؛ نامشخص در مقاله، پیش‌فرض از پویش مقادیر).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="160"/>
+        <location filename="core_strings.py" line="167"/>
         <source>Hamming distance under which a keypoint with a near-duplicate in its own image is removed (gap; from a sweep).</source>
         <translation>فاصلهٔ همینگی که اگر نقطهٔ کلیدی در همان تصویر خودش نقطهٔ تقریباً تکراری با فاصلهٔ کمتر از آن داشته باشد، حذف می‌شود (نامشخص در مقاله؛ از پویش مقادیر).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="161"/>
+        <location filename="core_strings.py" line="168"/>
         <source>Gradient magnitude: l1 = 0.5|Gx|+0.5|Gy| (OpenCV tutorial, the spec&apos;s reading) or l2 = sqrt(Gx^2+Gy^2)/sqrt(2), which does not change with edge direction.</source>
         <translation>بزرگی گرادیان: l1 = 0.5|Gx|+0.5|Gy| (آموزش OpenCV، برداشت سند مشخصات) یا l2 = sqrt(Gx^2+Gy^2)/sqrt(2) که با جهت لبه تغییر نمی‌کند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="162"/>
+        <location filename="core_strings.py" line="169"/>
         <source>to-zero keeps magnitudes above T (the paper); soft subtracts T, so the edge image has no jumps at the threshold for the DoG to fire on.</source>
         <translation>حالت to-zero بزرگی‌های بالاتر از T را نگه می‌دارد (طبق مقاله)؛ حالت soft مقدار T را کم می‌کند تا تصویر لبه در آستانه پرشی نداشته باشد که DoG روی آن پاسخ دهد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="163"/>
+        <location filename="core_strings.py" line="170"/>
         <source>Resolution at which the DoG pyramid starts (2 = OpenCV SIFT&apos;s upsampled base, the paper&apos;s; 1 = full resolution, 4x less work).</source>
         <translation>تفکیک‌پذیری‌ای که هرم DoG از آن شروع می‌شود (۲ = پایهٔ بزرگ‌نمایی‌شدهٔ SIFT در OpenCV، همانند مقاله؛ ۱ = تفکیک‌پذیری کامل، با ۴ برابر محاسبهٔ کمتر).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="164"/>
+        <location filename="core_strings.py" line="171"/>
         <source>Strongest DoG keypoints kept per image (0 = all, as the paper).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی DoG که در هر تصویر نگه داشته می‌شوند (۰ = همه، طبق مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="165"/>
+        <location filename="core_strings.py" line="172"/>
         <source>SIFT DoG contrast threshold on the edge image (OpenCV default).</source>
         <translation>آستانهٔ کنتراست DoG در SIFT روی تصویر لبه (پیش‌فرض OpenCV).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="166"/>
+        <location filename="core_strings.py" line="173"/>
         <source>Describe each keypoint on the pyramid level matching its SIFT size (the paper uses a fixed 31-px patch, which breaks beyond ~1.5x scale).</source>
         <translation>توصیف هر نقطهٔ کلیدی در سطحی از هرم که با اندازهٔ SIFT آن جور است (مقاله وصلهٔ ثابت ۳۱ px به کار می‌برد که در اختلاف مقیاس بیش از حدود ۱٫۵ برابر از کار می‌افتد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="167"/>
+        <location filename="core_strings.py" line="174"/>
         <source>Lowe ratio on Hamming distances (1 = off, as the paper).</source>
         <translation>نسبت Lowe روی فاصله‌های همینگ (۱ = غیرفعال، طبق مقاله).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="168"/>
+        <location filename="core_strings.py" line="175"/>
         <source>Spec Appendix B (not in the paper): keep matches at the peaks of the angle and log-scale difference histograms.</source>
         <translation>پیوست B سند مشخصات (در مقاله نیست): نگه‌داشتن تطابق‌هایی که در قله‌های هیستوگرام‌های اختلاف زاویه و اختلاف لگاریتم مقیاس قرار دارند.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="231"/>
+        <location filename="core_strings.py" line="238"/>
         <source>Faithful: OpenCV tutorial magnitude 0.5|Gx|+0.5|Gy|.</source>
         <translation>مطابق مقاله: بزرگی گرادیان به روش آموزش OpenCV، یعنی 0.5|Gx|+0.5|Gy|.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="232"/>
+        <location filename="core_strings.py" line="239"/>
         <source>Faithful: threshold-to-zero.</source>
         <translation>مطابق مقاله: آستانه‌گذاری به صفر (threshold-to-zero).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="233"/>
+        <location filename="core_strings.py" line="240"/>
         <source>Faithful: OpenCV SIFT as is (upsampled base).</source>
         <translation>مطابق مقاله: SIFT در OpenCV بدون تغییر (پایهٔ بزرگ‌نمایی‌شده).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="234"/>
+        <location filename="core_strings.py" line="241"/>
         <source>Faithful: every DoG keypoint.</source>
         <translation>مطابق مقاله: همهٔ نقاط کلیدی DoG.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="235"/>
+        <location filename="core_strings.py" line="242"/>
         <source>Faithful: one 31-px patch at full resolution for every keypoint.</source>
         <translation>مطابق مقاله: یک وصلهٔ ۳۱ px در تفکیک‌پذیری کامل برای هر نقطهٔ کلیدی.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="236"/>
+        <location filename="core_strings.py" line="243"/>
         <source>Faithful: mutual nearest neighbours without a ratio test.</source>
         <translation>مطابق مقاله: نزدیک‌ترین همسایه‌های دوطرفه بدون آزمون نسبت.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="223"/>
+        <location filename="core_strings.py" line="230"/>
         <source>Strongest keypoints kept per image (0 = all).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی که در هر تصویر نگه داشته می‌شوند (۰ = همه).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="224"/>
+        <location filename="core_strings.py" line="231"/>
         <source>DoG contrast threshold (OpenCV default, Lowe 2004).</source>
         <translation>آستانهٔ کنتراست DoG (پیش‌فرض OpenCV، Lowe 2004).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="225"/>
+        <location filename="core_strings.py" line="232"/>
         <source>Edge-response ratio limit (Lowe 2004).</source>
         <translation>حد نسبت پاسخ لبه (Lowe 2004).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="226"/>
+        <location filename="core_strings.py" line="233"/>
         <source>Lowe&apos;s nearest/second-nearest distance ratio.</source>
         <translation>نسبت فاصلهٔ نزدیک‌ترین به دومین نزدیک‌ترین همسایه (Lowe).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="171"/>
+        <location filename="core_strings.py" line="178"/>
         <source>Longest reference side for feature extraction, px: enough detail for RIFT features, and their cost.</source>
         <translation>طول بلندترین ضلع تصویر مرجع برای استخراج ویژگی، px: تعادلی میان جزئیات کافی برای ویژگی‌های RIFT و هزینهٔ محاسبهٔ آن‌ها.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="172"/>
+        <location filename="core_strings.py" line="179"/>
         <source>Pyramid levels (factors 2^-k/2) per image; 3 covers scales 1/2 to 2.</source>
         <translation>تعداد سطوح هرم (ضرایب 2^-k/2) برای هر تصویر؛ ۳ سطح، مقیاس‌های ۱/۲ تا ۲ را پوشش می‌دهد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="173"/>
+        <location filename="core_strings.py" line="180"/>
         <source>Keypoints kept at the first level (0.7 and 0.5 times that at the next two).</source>
         <translation>تعداد نقاط کلیدی نگه‌داشته‌شده در سطح اول (در دو سطح بعدی ۰٫۷ و ۰٫۵ برابر آن).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="174"/>
+        <location filename="core_strings.py" line="181"/>
         <source>Rotation-scale hypotheses checked densely (10 gave nothing more).</source>
         <translation>تعداد فرضیه‌های دوران-مقیاس که به‌صورت متراکم بررسی می‌شوند (۱۰ فرضیه بهبودی بیشتری نداد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="175"/>
+        <location filename="core_strings.py" line="182"/>
         <source>Hypotheses refined by local RIFT (5 gave nothing more).</source>
         <translation>تعداد فرضیه‌هایی که با RIFT محلی پالایش می‌شوند (۵ فرضیه بهبودی بیشتری نداد).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="176"/>
+        <location filename="core_strings.py" line="183"/>
         <source>Longest reference side for the dense check, px: keeps its 30 FFT trials per hypothesis cheap; where CFOG separated right from wrong poses best.</source>
         <translation>طول بلندترین ضلع تصویر مرجع برای بررسی متراکم، px: ۳۰ آزمایش FFT هر فرضیه را کم‌هزینه نگه می‌دارد؛ در این اندازه CFOG وضعیت‌های درست را بهتر از همه از وضعیت‌های نادرست جدا کرد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="177"/>
+        <location filename="core_strings.py" line="184"/>
         <source>Longest reference side for local RIFT matching, px.</source>
         <translation>طول بلندترین ضلع تصویر مرجع برای تناظریابی محلی RIFT، px.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="178"/>
+        <location filename="core_strings.py" line="185"/>
         <source>Fewest local-RIFT inliers for a refined hypothesis.</source>
         <translation>کمترین تعداد نقاط سازگار (inlier) در RIFT محلی برای یک فرضیهٔ پالایش‌شده.</translation>
     </message>
@@ -1506,22 +1511,22 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل‌های بیرون از هدف</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="157"/>
+        <location filename="../processing/register_algorithm.py" line="159"/>
         <source>HTML files (*.html)</source>
         <translation>پرونده‌های HTML (*.html)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="239"/>
+        <location filename="../processing/register_algorithm.py" line="241"/>
         <source>GCP points are written to a GeoPackage: choose a .gpkg file (got &apos;{}&apos;).</source>
         <translation>نقاط کنترل در یک GeoPackage نوشته می‌شوند: یک پروندهٔ ‎.gpkg انتخاب کنید (داده‌شده: «{}»).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="257"/>
+        <location filename="../processing/register_algorithm.py" line="259"/>
         <source>Invalid parameter: {}</source>
         <translation>پارامتر نامعتبر: {}</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="263"/>
+        <location filename="../processing/register_algorithm.py" line="265"/>
         <source>Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.</source>
         <translation>همتا با یک خطای پیش‌بینی‌نشده متوقف شد ({}: {})؛ هیچ خروجی‌ای نوشته نشد. لطفاً آن را گزارش کنید.</translation>
     </message>
@@ -1601,7 +1606,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>چارک سوم</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="135"/>
+        <location filename="../processing/register_algorithm.py" line="137"/>
         <source>Keep unverified results</source>
         <translation>نگه‌داشتن نتایج تأییدنشده</translation>
     </message>
@@ -1616,17 +1621,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل به پیکسل (مرجع بدون زمین‌مرجع)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="157"/>
+        <location filename="../processing/register_algorithm.py" line="159"/>
         <source>Quality report (HTML)</source>
         <translation>گزارش کیفیت (HTML)</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="292"/>
+        <location filename="../processing/register_algorithm.py" line="296"/>
         <source>{} (set &apos;{}&apos;).</source>
         <translation>{} (گزینهٔ «{}» را فعال کنید).</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="325"/>
+        <location filename="../processing/register_algorithm.py" line="329"/>
         <source>{}; self-reported RMSE {:.3f} px, leave-one-out RMS {} px (residuals of the fit, not its accuracy).</source>
         <translation>{}؛ RMSE گزارش‌شده از خود برازش {:.3f} px، RMS حذف تک‌نقطه {} px (باقی‌مانده‌های برازش، نه دقت آن).</translation>
     </message>
@@ -1661,7 +1666,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>میانگین</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="119"/>
+        <location filename="../processing/register_algorithm.py" line="120"/>
         <source>References: {}</source>
         <translation>مراجع: {}</translation>
     </message>
@@ -1821,7 +1826,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>مقدار تصویر هدف، وگرنه ۰</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="222"/>
+        <location filename="core_strings.py" line="229"/>
         <source>Registers the target raster onto the reference raster automatically: OpenCV SIFT keypoints, Lowe&apos;s ratio test with a mutual check, seeded RANSAC, full-resolution refinement, and the chosen transformation fitted on well-spread GCPs. Writes the georeferenced raster, the GCPs as a point layer and, on request, a QGIS Georeferencer .points file, a VRT carrying the GCPs and a JSON report.</source>
         <translation>رستر هدف را به‌طور خودکار روی رستر مرجع ثبت می‌کند: نقاط کلیدی SIFT از OpenCV، آزمون نسبت لو با بررسی دوطرفه، RANSAC با بذر ثابت، پالایش در تفکیک‌پذیری کامل، و برازش تبدیل انتخاب‌شده روی نقاط کنترلِ خوب‌پراکنده. رستر زمین‌مرجع‌شده و نقاط کنترل را به‌صورت لایه نقطه‌ای می‌نویسد و در صورت درخواست، پرونده .points برای Georeferencer کیوجی‌آی‌اس، یک VRT همراه نقاط کنترل و گزارشی به قالب JSON.</translation>
     </message>
@@ -1836,17 +1841,17 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>تصویر SAR را با وجود اسپکل روی تصویر SAR مرجع (تاریخ، باند یا قطبش دیگر) ثبت می‌کند: فضای مقیاس پخش غیرخطی که رسانایی آن از گرادیان ROEWA مقاوم در برابر اسپکل استفاده می‌کند، نقاط کلیدی و توصیفگرهای SIFT روی آن، نگه‌داشتن نقاط کلیدی فقط جایی که همدوسی فاز ساختار واقعی نشان می‌دهد، تناظریابی با آزمون نسبت، RANSAC با بذر ثابت، سپس پالایش همبستگی روی یک شبکه با تفکیک کامل. تعیین کنید رسترها چه چیزی دارند (دامنه، شدت یا دسی‌بل؛ داده‌های مختلط به‌صورت دامنه خوانده می‌شوند). پیش‌فرض‌های محصول پیش‌هموارسازی می‌کنند و آزمون نسبت یک‌طرفه به کار می‌برند؛ روش «ndsift-pc-faithful» در خط فرمان نسخهٔ مطابق مقاله است.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="140"/>
+        <location filename="core_strings.py" line="147"/>
         <source>Registers an optical satellite image onto a reference with any rotation between them: CenSurE octagon keypoints described by the rotation-invariant LBP descriptor (rings, intensity-order sub-regions, centre-symmetric LBP in each pixel&apos;s radial frame; no orientation step), mutual ratio-test matching, seeded RANSAC and the chosen transformation fitted on well-spread GCPs. Product defaults add sub-pixel keypoints and smoothed, radius-2 codes; the CLI method &apos;rilbp-faithful&apos; is the paper as written.</source>
         <translation>تصویر ماهواره‌ای اپتیکی را با هر مقدار دوران نسبت به مرجع ثبت می‌کند: نقاط کلیدی CenSurE با فیلترهای هشت‌ضلعی که با توصیفگر الگوی باینری محلی مستقل از دوران توصیف می‌شوند (حلقه‌ها، زیرنواحی مبتنی بر ترتیب شدت، LBP متقارن مرکزی در دستگاه مختصات شعاعی هر پیکسل؛ بدون مرحلهٔ تعیین جهت)، تناظریابی دوطرفه با آزمون نسبت، RANSAC با بذر ثابت و برازش تبدیل انتخاب‌شده روی نقاط کنترلِ خوب‌پراکنده. پیش‌فرض‌های محصول، نقاط کلیدی زیرپیکسلی و کدهای هموارشده با شعاع ۲ را می‌افزایند؛ روش «rilbp-faithful» در خط فرمان نسخهٔ مطابق مقاله است.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="158"/>
+        <location filename="core_strings.py" line="165"/>
         <source>Registers an aerial (or any optical) image onto a satellite reference quickly: SIFT difference-of-Gaussian keypoints detected on a thresholded Sobel edge image, rBRIEF binary descriptors steered by the intensity centroid, removal of self-similar keypoints, mutual Hamming matching and RANSAC with affine samples. Few, strong keypoints make it several times faster than SIFT. Product defaults describe each keypoint at its own scale and add a ratio test; the CLI method &apos;sibrif-faithful&apos; is the paper as written.</source>
         <translation>تصویر هوایی (یا هر تصویر اپتیکی) را به‌سرعت روی تصویر ماهواره‌ای مرجع ثبت می‌کند: نقاط کلیدی تفاضل گوسی SIFT که روی تصویر لبهٔ آستانه‌گذاری‌شدهٔ سوبل آشکار می‌شوند، توصیفگرهای دودویی rBRIEF که با مرکز ثقل شدت جهت‌دهی می‌شوند، حذف نقاط کلیدی خودمشابه، تناظریابی دوطرفه با فاصلهٔ همینگ و RANSAC با نمونه‌های آفین. نقاط کلیدی کم‌شمار و قوی آن را چند برابر سریع‌تر از SIFT می‌کنند. پیش‌فرض‌های محصول هر نقطه را در مقیاس خودش توصیف می‌کنند و آزمون نسبت را می‌افزایند؛ روش «sibrif-faithful» در خط فرمان نسخهٔ مطابق مقاله است.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="170"/>
+        <location filename="core_strings.py" line="177"/>
         <source>Registers a target of another modality than the reference (SAR, infrared, a depth rendering, a web map, night lights onto optical imagery) at any rotation and at scales from 1/2 to 2: phase-congruency (RIFT) features vote for rotation and scale, each hypothesis is checked densely with CFOG structural descriptors, the best are refined by matching RIFT descriptors near their predicted positions, and the result is refined at full resolution with CFOG and checked independently. Its baseline, the published RIFT2 matcher, is the CLI method &apos;rift&apos;.</source>
         <translation>تصویر هدفی با مدالیته‌ای متفاوت از مرجع (SAR، فروسرخ، رندر عمق، نقشهٔ وب، نورهای شبانه روی تصاویر نوری) را با هر دوران و در مقیاس‌های ۱/۲ تا ۲ ثبت می‌کند: ویژگی‌های همدوسی فاز (RIFT) به دوران و مقیاس رأی می‌دهند، هر فرضیه به‌صورت متراکم با توصیفگرهای ساختاری CFOG بررسی می‌شود، بهترین فرضیه‌ها با تناظریابی توصیفگرهای RIFT در نزدیکی موقعیت‌های پیش‌بینی‌شده‌شان پالایش می‌شوند، و نتیجه در تفکیک‌پذیری کامل با CFOG پالایش و به‌طور مستقل بررسی می‌شود. روش پایهٔ آن، یعنی تناظریاب منتشرشدهٔ RIFT2، روش «rift» در خط فرمان است.</translation>
     </message>
@@ -1898,7 +1903,7 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
     <message>
         <location filename="../processing/register_algorithm.py" line="133"/>
         <source>Reference raster or map layer (XYZ, WMS...)</source>
-        <translation>رستر یا لایهٔ نقشهٔ مرجع (XYZ، WMS...)</translation>
+        <translation type="obsolete">رستر یا لایهٔ نقشهٔ مرجع (XYZ، WMS...)</translation>
     </message>
     <message>
         <location filename="core_strings.py" line="59"/>
@@ -1916,12 +1921,12 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>همهٔ مرجع؛ برای سرویس نقشه الزامی است</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="301"/>
+        <location filename="../processing/register_algorithm.py" line="305"/>
         <source>on</source>
         <translation>روشن</translation>
     </message>
     <message>
-        <location filename="../processing/register_algorithm.py" line="319"/>
+        <location filename="../processing/register_algorithm.py" line="323"/>
         <source>May help: {} ({}).</source>
         <translation>شاید کمک کند: {} ({}).</translation>
     </message>
@@ -1931,47 +1936,47 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <translation>پیکسل‌های خود تصویر هدف (بدون بازنمونه‌برداری)</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="152"/>
+        <location filename="core_strings.py" line="159"/>
         <source>Windows per side of the grid over the overlap.</source>
         <translation>تعداد پنجره‌ها در هر ضلع شبکه روی ناحیهٔ هم‌پوشانی.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="155"/>
+        <location filename="core_strings.py" line="162"/>
         <source>Share of a window&apos;s pixels that must be valid in both images.</source>
         <translation>سهمی از پیکسل‌های پنجره که باید در هر دو تصویر معتبر باشد.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="156"/>
+        <location filename="core_strings.py" line="163"/>
         <source>Lowest accepted phase-correlation peak of a window.</source>
         <translation>کمترین قلهٔ پذیرفتنی همبستگی فاز در یک پنجره.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="237"/>
+        <location filename="core_strings.py" line="244"/>
         <source>Strongest keypoints kept per image (XFeat&apos;s default).</source>
         <translation>تعداد قوی‌ترین نقاط کلیدی نگه‌داشته در هر تصویر (پیش‌فرض XFeat).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="238"/>
+        <location filename="core_strings.py" line="245"/>
         <source>Cosine similarity a mutual nearest neighbour needs (XFeat&apos;s default).</source>
         <translation>شباهت کسینوسی لازم برای نزدیک‌ترین همسایهٔ دوسویه (پیش‌فرض XFeat).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="239"/>
+        <location filename="core_strings.py" line="246"/>
         <source>Turns of the target tried, either way, in steps of 45 degrees: 0 when the target is upright on the reference (resampled onto it by its georeferencing), 180 for any rotation.</source>
         <translation>چرخش‌های آزموده‌شدهٔ تصویر هدف در هر دو سو، با گام ۴۵ درجه: ۰ وقتی هدف روی مرجع راست ایستاده است (با زمین‌مرجع خودش روی آن بازنمونه‌برداری شده)، ۱۸۰ برای هر چرخشی.</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="240"/>
+        <location filename="core_strings.py" line="247"/>
         <source>Both images are matched shrunk alike to at most this many pixels each: XFeat describes at an eighth of the resolution it is given, and the full-resolution refinement restores the precision (four times faster than at the 4 Mpx working size).</source>
         <translation>هر دو تصویر به یک نسبت تا حداکثر این تعداد پیکسل کوچک و سپس تطبیق داده می‌شوند: XFeat در یک‌هشتم تفکیک‌پذیری ورودی توصیف می‌کند و پالایش با تفکیک‌پذیری کامل دقت را بازمی‌گرداند (چهار برابر سریع‌تر از اندازهٔ کاری ۴ مگاپیکسل).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="153"/>
+        <location filename="core_strings.py" line="160"/>
         <source>Side of each correlation window, working px (halved for small overlaps).</source>
         <translation>ضلع هر پنجرهٔ همبستگی، به پیکسل کاری (برای هم‌پوشانی‌های کوچک نصف می‌شود).</translation>
     </message>
     <message>
-        <location filename="core_strings.py" line="154"/>
+        <location filename="core_strings.py" line="161"/>
         <source>Longest side of the coarse whole-overlap correlation, px.</source>
         <translation>بلندترین ضلع همبستگی درشت کل ناحیهٔ هم‌پوشانی، به پیکسل.</translation>
     </message>
@@ -1999,6 +2004,46 @@ QGIS&apos;s own batch mode over the single-pair algorithms works too.</source>
         <location filename="../processing/catalogue.py" line="33"/>
         <source>Georeferences a scanned map sheet by the grid or graticule printed on it, without a reference layer. Choose the sheet&apos;s CRS. The coordinates printed in its margins are read (Tesseract); where they cannot be, place two or three crossings of the printed lines roughly in the QGIS Georeferencer, type their coordinates as printed (degrees, or metres of the national grid) and save the GCP points (.points) as hints. Hamta finds the printed lattice as a whole, then every crossing of the sheet to a fraction of a pixel; each crossing becomes a GCP. The model (affine, a polynomial where the projection bends the lines, a thin plate spline where the paper is warped) is checked by predicting each grid line from the others: a result is verified only when that check is within the accuracy asked for, in scan pixels. A sheet whose grid cannot be found is refused, saying why.</source>
         <translation>برگهٔ نقشهٔ اسکن‌شده را با شبکه یا شبکهٔ جغرافیایی چاپ‌شده روی آن، بدون لایهٔ مرجع، زمین‌مرجع می‌کند. CRS برگه را انتخاب کنید. مختصات چاپ‌شده در حاشیهٔ آن خوانده می‌شود (Tesseract)؛ جایی که خوانده نشود، دو یا سه تقاطع خطوط چاپ‌شده را تقریبی در زمین‌مرجع‌ساز QGIS بگذارید، مختصاتشان را همان‌طور که چاپ شده بنویسید (درجه، یا متر شبکهٔ ملی) و نقاط کنترل (.points) را به‌عنوان راهنما ذخیره کنید. همتا ابتدا کل شبکهٔ چاپ‌شده و سپس هر تقاطع برگه را با دقت کسری از پیکسل پیدا می‌کند؛ هر تقاطع یک نقطهٔ کنترل می‌شود. مدل (آفین، چندجمله‌ای جایی که تصویر نقشه خطوط را خم می‌کند، یا اسپلاین صفحهٔ نازک جایی که کاغذ تاب برداشته) با پیش‌بینی هر خط شبکه از روی بقیه سنجیده می‌شود: نتیجه فقط وقتی تأیید می‌شود که این سنجش در دقت خواسته‌شده، به پیکسل اسکن، باشد. برگه‌ای که شبکه‌اش پیدا نشود، با گفتن دلیل، رد می‌شود.</translation>
+    </message>
+    <message>
+        <location filename="../processing/register_algorithm.py" line="134"/>
+        <source>Reference layer (raster, XYZ, WMS, areas or lines)</source>
+        <translation>لایهٔ مرجع (رستر، XYZ، WMS، سطوح یا خطوط)</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="142"/>
+        <source>Smallest region kept, working px.</source>
+        <translation>کوچک‌ترین ناحیهٔ نگه‌داشته‌شده، پیکسل کاری.</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="145"/>
+        <source>At most this many target regions, the largest, score a similarity: a bound on the search&apos;s time where a scan holds tens of thousands (letters, specks).</source>
+        <translation>حداکثر این تعداد از نواحی هدف، بزرگ‌ترین‌ها، یک تبدیل شباهت را امتیاز می‌دهند: حدی بر زمان جست‌وجو وقتی یک اسکن ده‌ها هزار ناحیه (حروف، لکه‌ها) دارد.</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="139"/>
+        <source>Register a scanned map onto a layer of areas (regions)</source>
+        <translation>ثبت نقشهٔ اسکن‌شده روی لایه‌ای از سطوح (نواحی)</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="140"/>
+        <source>Registers a target whose closed shapes (lakes, blocks, fields) the reference shows too, in another look: a scanned map onto a layer of the areas it shows (a vector layer of water or buildings, drawn as a raster), at any rotation and scale. The regions of each image, cut at many grey levels, are matched by where they lie together; their centroids are refined at full resolution with CFOG and the result checked independently.</source>
+        <translation>هدفی را ثبت می‌کند که شکل‌های بستهٔ آن (دریاچه‌ها، بلوک‌ها، زمین‌ها) در مرجع هم، با ظاهری دیگر، دیده می‌شوند: نقشهٔ اسکن‌شده روی لایه‌ای از سطوحی که نشان می‌دهد (لایهٔ برداری آب یا ساختمان‌ها که به رستر کشیده می‌شود)، در هر چرخش و مقیاسی. نواحی هر تصویر، که در سطوح خاکستری بسیاری بریده می‌شوند، بر پایهٔ جای قرارگیری‌شان در کنار هم تطبیق داده می‌شوند؛ مرکزهای آن‌ها با CFOG در تفکیک کامل پالایش می‌شوند و نتیجه به‌طور مستقل بررسی می‌شود.</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="141"/>
+        <source>Grey levels (percentiles) at which regions are cut from each image.</source>
+        <translation>سطوح خاکستری (صدک‌ها) که نواحی هر تصویر در آن‌ها بریده می‌شوند.</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="143"/>
+        <source>Each image is matched at most this size (the larger of the two is brought to the smaller&apos;s pixel count first).</source>
+        <translation>هر تصویر حداکثر در این اندازه تطبیق داده می‌شود (بزرگ‌تر از آن دو ابتدا به تعداد پیکسل کوچک‌تر رسانده می‌شود).</translation>
+    </message>
+    <message>
+        <location filename="core_strings.py" line="144"/>
+        <source>Largest target regions each paired with every large reference region to propose a similarity.</source>
+        <translation>بزرگ‌ترین نواحی هدف، که هر یک با هر ناحیهٔ بزرگ مرجع جفت می‌شود تا یک تبدیل شباهت پیشنهاد شود.</translation>
     </message>
 </context>
 </TS>

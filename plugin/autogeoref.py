@@ -15,6 +15,7 @@ from typing import Optional
 
 from qgis.core import (
     QgsCoordinateReferenceSystem,
+    QgsMapLayer,
     QgsMapLayerProxyModel,
     QgsProject,
     QgsRasterLayer,
@@ -88,7 +89,7 @@ class Job:
 
     target: str
     target_name: str
-    reference: Optional[QgsRasterLayer]
+    reference: Optional[QgsMapLayer]
     extent: Optional[str]
     folder: str
     options: RegisterOptions
@@ -117,11 +118,13 @@ class AutoGeoreferenceDialog(QDialog):
         form.addRow(tr("Target raster"), self.target)
 
         self.reference = QgsMapLayerComboBox(self)
-        self.reference.setFilters(QgsMapLayerProxyModel.RasterLayer)
+        self.reference.setFilters(QgsMapLayerProxyModel.RasterLayer | QgsMapLayerProxyModel.PolygonLayer
+                                  | QgsMapLayerProxyModel.LineLayer)
         self.reference.setAllowEmptyLayer(True)
         self.reference.setLayer(basemap(visible_layers(), self.target.currentLayer()))
         self.reference.setToolTip(tr("The georeferenced layer to match the target on: a basemap (XYZ tiles, WMS, "
-                                     "WMTS...) or a raster. The results are in its CRS. None: a scanned map is "
+                                     "WMTS...), a raster, or a layer of areas or lines (water, buildings, roads: "
+                                     "for a scanned map). The results are in its CRS. None: a scanned map is "
                                      "georeferenced by the grid printed on it."))
         form.addRow(tr("Reference layer"), self.reference)
 
@@ -245,7 +248,7 @@ class AutoGeoreferenceDialog(QDialog):
             return tr("Choose a reference layer other than the target: a basemap or a georeferenced raster.")
         if not self.folder.filePath().strip():
             return tr("Choose an output folder.")
-        if reference is not None and self.extent() is None and not is_georeferenced(target.source()) \
+        if isinstance(reference, QgsRasterLayer) and self.extent() is None and not is_georeferenced(target.source()) \
                 and reference.providerType() != "gdal":
             return tr("'{}' has no georeferencing: turn on the search area (the map canvas extent by default) so "
                       "that Hamta knows where to look in '{}'.").format(target.name(), reference.name())

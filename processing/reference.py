@@ -1,6 +1,8 @@
-"""Any QGIS raster layer as the reference: what the core reads for it.
+"""Any QGIS raster or vector layer as the reference: what the core reads for it.
 
 - a GDAL layer (a file, a VRT, a ``/vsicurl/`` COG): its source;
+- a vector layer of areas or lines (water, buildings, roads): its shapes over the area needed drawn into a
+  GeoTIFF under Hamta's cache (:class:`Shapes`, :mod:`hamta.core.io.rasterize`), within the pixel budget;
 - an XYZ or WMS layer of the 'wms' provider that :func:`hamta.core.basemap.services.parse_service`
   reads (no QGIS credentials or headers; a WMS in EPSG:3857 or EPSG:4326): its source, which the core
   reads tile by tile itself (:mod:`hamta.core.remote`: cache, retries, zoom choice, coarse to fine);
@@ -17,10 +19,13 @@ import tempfile
 from qgis.core import (
     QgsCoordinateReferenceSystem,
     QgsCoordinateTransform,
+    QgsFeatureRequest,
     QgsProject,
     QgsRasterFileWriter,
     QgsRasterPipe,
     QgsRectangle,
+    QgsVectorLayer,
+    QgsVectorLayerFeatureSource,
 )
 
 from ..core.basemap.cache import Cache, Unusable, default_cache
@@ -35,12 +40,15 @@ def reference_source(layer, extent, target: str, max_pixels: int):
     the search area text, or None); a layer without a GDAL equivalent is rendered here (see
     :func:`prepare_reference`)."""
     prepared = prepare_reference(layer, extent, target, max_pixels)
-    return prepared if not isinstance(prepared, Rendering) else RasterReference(prepared.write())
+    return RasterReference(prepared.write()) if isinstance(prepared, (Rendering, Shapes)) else prepared
 
 
 def prepare_reference(layer, extent, target: str, max_pixels: int):
-    """The resolved reference for ``layer``, or a :class:`Rendering` to write in a worker thread (made
-    here, in the layer's thread: it holds a clone of the layer's provider)."""
+    """The resolved reference for ``layer``, or a :class:`Rendering` (a raster layer) or :class:`Shapes` (a vector
+    layer) to write in a worker thread (made here, in the layer's thread: it holds a clone of the layer's
+    provider, or a source of its features)."""
+    if isinstance(layer, QgsVectorLayer):
+        return Shapes(layer, _area(layer, extent, target), max_pixels)
     return layer_reference(layer) or Rendering(layer, _area(layer, extent, target), max_pixels)
 
 
@@ -73,6 +81,8 @@ def _area(layer, extent, target: str) -> QgsRectangle:
     from ..core.remote import footprint_bounds, uses_georeferencing  # the engine: not when QGIS starts
 
     info = open_raster(target, "target")
+    if extent is None and isinstance(layer, QgsVectorLayer) and not uses_georeferencing(info, RegisterOptions()):
+        return layer.extent()
     if extent is None:
         if not uses_georeferencing(info, RegisterOptions()):
             raise InputError(f"The target raster '{info.path}' has no georeferencing, so Hamta cannot tell which part "
@@ -117,6 +127,45 @@ class Rendering:
             raise InputError(f"The reference layer '{self.name}' could not be read over the area needed "
                              f"({self.kind} provider, error {int(error)}).")
         os.replace(tmp, self.path)
+        return self.path
+
+
+class Shapes:
+    """The areas and lines of a vector layer over ``rect`` (layer CRS), drawn at a pixel size that fits
+    ``max_pixels`` into a GeoTIFF under Hamta's cache (drawn again each time: a layer's features may have been
+    edited): what the layer holds, not its style (a shape drawn hollow or in the paper's colour is still a
+    shape)."""
+
+    def __init__(self, layer, rect: QgsRectangle, max_pixels: int):
+        res = math.sqrt(max(rect.width() * rect.height(), 1e-12) / max_pixels)
+        self.cols, self.rows = max(16, int(rect.width() / res)), max(16, int(rect.height() / res))
+        self.source, self.crs, self.rect = QgsVectorLayerFeatureSource(layer), layer.crs(), rect
+        self.name, self.kind = layer.name(), layer.providerType()
+        key = f"shapes|{layer.id()}|{layer.source()}|{rect.toString(12)}|{self.cols}x{self.rows}"
+        self.warnings = []
+        self.path = os.path.join(_layers_folder(self.warnings), hashlib.sha256(key.encode()).hexdigest()[:24] + ".tif")
+
+    def write(self, feedback=None) -> str:
+        """The GeoTIFF's path (``feedback``: anything with ``isCanceled()``)."""
+        from shapely import wkb
+
+        from ..core.errors import RegistrationCanceled
+        from ..core.io.rasterize import write_shapes
+
+        def shapes():
+            for feature in self.source.getFeatures(QgsFeatureRequest().setFilterRect(self.rect)):
+                if feedback is not None and feedback.isCanceled():
+                    raise RegistrationCanceled("canceled while the reference layer was read")
+                geometry = feature.geometry()
+                if not geometry.isNull():
+                    yield wkb.loads(bytes(geometry.asWkb()))
+
+        r = self.rect
+        drawn = write_shapes(shapes(), (r.xMinimum(), r.yMinimum(), r.xMaximum(), r.yMaximum()),
+                             (self.cols, self.rows), self.crs.toWkt(), self.path)
+        if not drawn:
+            os.remove(self.path)
+            raise InputError(f"The reference layer '{self.name}' has no areas or lines over the area needed.")
         return self.path
 
 

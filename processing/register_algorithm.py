@@ -14,6 +14,7 @@ from qgis.core import (
     QgsProcessingParameterBoolean,
     QgsProcessingParameterEnum,
     QgsProcessingParameterFileDestination,
+    QgsProcessingParameterMapLayer,
     QgsProcessingParameterNumber,
     QgsProcessingParameterRasterDestination,
     QgsProcessingParameterRasterLayer,
@@ -130,8 +131,9 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         d = RegisterOptions() if method is None else dataclasses.replace(resolve_options(RegisterOptions(), method),
                                                                          model=None)
         self.addParameter(QgsProcessingParameterRasterLayer(self.TARGET, self.tr("Target raster (to georeference)")))
-        self.addParameter(QgsProcessingParameterRasterLayer(
-            self.REFERENCE, self.tr("Reference raster or map layer (XYZ, WMS...)")))
+        self.addParameter(QgsProcessingParameterMapLayer(
+            self.REFERENCE, self.tr("Reference layer (raster, XYZ, WMS, areas or lines)"),
+            types=[QgsProcessing.TypeRaster, QgsProcessing.TypeVectorPolygon, QgsProcessing.TypeVectorLine]))
         self.addParameter(QgsProcessingParameterBoolean(
             self.KEEP_UNVERIFIED, self.tr("Keep unverified results"), False))
         for p in option_parameters(d):
@@ -276,8 +278,10 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
 
     def _reference(self, parameters, context, options, target):
         """What the target is registered onto (see :func:`hamta.processing.reference.reference_source`)."""
-        return reference_source(self._layer(parameters, self.REFERENCE, context), options.extent, target,
-                                options.max_working_pixels)
+        layer = self.parameterAsLayer(parameters, self.REFERENCE, context)
+        if layer is None:
+            raise QgsProcessingException(self.invalidSourceError(parameters, self.REFERENCE))
+        return reference_source(layer, options.extent, target, options.max_working_pixels)
 
     def _run_arguments(self, values, output):
         """The method parameters :func:`hamta.core.runner.run` is given."""

@@ -19,10 +19,10 @@ from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
 from ..coords import raster_outline, xy_bounds
-from ..descriptors.cfog import central_differences, cfog, gaussian_blur
 from ..estimation.models import local_jacobian
 from ..io.raster import RasterInfo
 from ..io.windows import WindowReader
+from ..similarity.cfog import central_differences, cfog, gaussian_blur
 from .params import VerifyParams
 
 
@@ -148,14 +148,21 @@ def read_site(model, p, targets: WindowReader, references: WindowReader, side: i
     lo, hi = xy_bounds(src)
     c0, r0 = np.floor(lo).astype(int) - 2
     c1, r1 = np.ceil(hi).astype(int) + 2
-    if c1 <= 0 or r1 <= 0 or c0 >= target.width or r0 >= target.height or (c1 - c0) * (r1 - r0) > 16 * size * size:
+    if c1 <= 0 or r1 <= 0 or c0 >= target.width or r0 >= target.height:
         return None
+    k = finer_by(c1 - c0, r1 - r0, size)
+    if k > MAX_REDUCTION:
+        return None
+    c0, r0 = c0 - c0 % k, r0 - r0 % k
     # The window may reach past the target (a turned square's bounding box); what is sampled must not.
-    patch, pok = targets.read(Window(c0, r0, c1 - c0, r1 - r0))
+    patch, pok = targets.read(Window(c0, r0, c1 - c0 + (-(c1 - c0)) % k, r1 - r0 + (-(r1 - r0)) % k))
+    if k > 1:
+        patch, pok = reduced(patch, pok, k)
     if pok.mean() < 0.5:
         return None
     patch = np.where(pok, patch, patch[pok].mean()).astype(np.float64)
-    rows_cols = np.stack([(src[:, 1] - r0 - 0.5).reshape(size, size), (src[:, 0] - c0 - 0.5).reshape(size, size)])
+    rows_cols = np.stack([((src[:, 1] - r0) / k - 0.5).reshape(size, size),
+                          ((src[:, 0] - c0) / k - 0.5).reshape(size, size)])
     # Resampled with numpy in double precision (OpenCV's remap rounds positions to 1/32 px, and its
     # versions differ in the last digits): the check's numbers are the same on every library stack.
     warped = bilinear(patch, rows_cols)
@@ -163,6 +170,27 @@ def read_site(model, p, targets: WindowReader, references: WindowReader, side: i
     if wok.mean() < 0.95:
         return None
     return tmpl, ok, warped, wok
+
+
+MAX_REDUCTION = 4  # a target's window is averaged down by at most 4 x 4: targets up to about 12 times finer than
+# the reference are compared (a scanned map on a layer or an image), beyond that the site is left out
+
+
+def finer_by(width: int, height: int, size: int) -> int:
+    """1 where the target's window (``width`` x ``height`` px) for a site ``size`` px square is at most 16
+    times its area, as for images of like pixel sizes; else the whole factor that brings it there, by which
+    the window is averaged down before it is resampled (a much finer target is not sampled sparsely)."""
+    excess = width * height / (16 * size * size)
+    return 1 if excess <= 1 else int(math.ceil(math.sqrt(excess)))
+
+
+def reduced(patch: np.ndarray, valid: np.ndarray, k: int):
+    """``patch`` averaged over ``k`` x ``k`` blocks (its valid pixels only) and where blocks are half valid."""
+    h, w = patch.shape[0] // k, patch.shape[1] // k
+    blocks = (h, k, w, k)
+    weight = valid[:h * k, :w * k].reshape(blocks).sum(axis=(1, 3))
+    total = np.where(valid, patch, 0)[:h * k, :w * k].reshape(blocks).sum(axis=(1, 3), dtype=np.float64)
+    return (total / np.maximum(weight, 1)).astype(np.float32), weight >= k * k / 2
 
 
 @lru_cache(maxsize=8)

@@ -23,7 +23,6 @@ def test_escalates_to_a_method_whose_result_verifies(tmp_path, shared, monkeypat
     case = build_case(spec, str(tmp_path), 512, str(shared / "data"))
     chain = (Step("phasecorr", {}, "test"), Step("sift", {}, "test"), Step("cfog", {}, "test"))
     monkeypatch.setattr(auto_module, "CHAIN", chain)
-    monkeypatch.setattr(auto_module, "learned_steps", lambda prior: ())
     result = register(case.target, case.reference)
     attempts = result.auto.attempts
     assert result.method == "cfog" and result.verified and attempts[-1].accepted
@@ -39,7 +38,6 @@ def test_nothing_found_names_every_attempt(raster_writer, demo_pair, monkeypatch
 
     noise = raster_writer("noise.tif", np.random.default_rng(0).integers(0, 255, (300, 300), dtype=np.uint8))
     monkeypatch.setattr(auto_module, "CHAIN", (Step("sift", {}, "test"), Step("orb", {}, "test")))
-    monkeypatch.setattr(auto_module, "learned_steps", lambda prior: ())
     with pytest.raises(InsufficientMatchesError, match="'auto' tried sift: .*; orb: "):
         register(noise, demo_pair["reference"])
 
@@ -84,7 +82,6 @@ def test_a_bug_in_a_method_ends_auto_naming_the_method(demo_pair, raising_method
 
     name = raising_method(error)
     monkeypatch.setattr(auto_module, "CHAIN", (Step(name, {}, "test"), Step("sift", {}, "test")))
-    monkeypatch.setattr(auto_module, "learned_steps", lambda prior: ())
     with pytest.raises(MethodCrashed, match=rf"internal error in method '{name}' \({type(error).__name__}: ") as info:
         register(demo_pair["target"], demo_pair["reference"])
     assert info.value.method == name and info.value.__cause__ is error and not isinstance(info.value, HamtaError)
@@ -95,7 +92,6 @@ def test_a_bug_in_a_method_ends_auto_naming_the_method(demo_pair, raising_method
 def test_no_model_from_a_method_lets_auto_go_on(demo_pair, raising_method, monkeypatch):
     name = raising_method(InsufficientMatchesError("only 2 matches", 2, 8))
     monkeypatch.setattr(auto_module, "CHAIN", (Step(name, {}, "test"), Step("sift", {}, "test")))
-    monkeypatch.setattr(auto_module, "learned_steps", lambda prior: ())
     result = register(demo_pair["target"], demo_pair["reference"])
     first, second = result.auto.attempts
     assert (first.method, first.outcome, first.reason) == (name, "no model", "only 2 matches")
@@ -187,3 +183,39 @@ def test_the_precision_asked_for_is_a_share_of_the_tolerance():
 
     loose = auto_module.register_auto(attempt, RegisterOptions(tolerance_px=15.0), Monitor(), CHAIN_37)
     assert loose.method == "shift" and len(loose.auto.attempts) == 1
+
+
+ANY_TURN = {"max_rotation_deg": 180.0}
+# (learned extra installed, target placed by its georeferencing, short): the chain as (method, params), as
+# chain_for built it from slices of the chain before its steps were declared by name (with regions added after cfog).
+CHAINS = {
+    (False, False, False): [("sift", {}), ("xmodal", {}), ("cfog", {}), ("regions", {}), ("ndsift-pc", {}),
+                            ("cfog", ANY_TURN)],
+    (False, False, True): [("sift", {}), ("xmodal", {}), ("cfog", {})],
+    (False, True, False): [("shift", {}), ("sift", {}), ("xmodal", {}), ("cfog", {}), ("regions", {}),
+                           ("ndsift-pc", {}), ("cfog", ANY_TURN)],
+    (False, True, True): [("shift", {}), ("sift", {}), ("xmodal", {}), ("cfog", {})],
+    (True, False, False): [("sift", {}), ("xmodal", {}), ("xfeat", ANY_TURN), ("cfog", {}), ("regions", {}),
+                           ("ndsift-pc", {}), ("cfog", ANY_TURN)],
+    (True, False, True): [("sift", {}), ("xmodal", {}), ("xfeat", ANY_TURN), ("cfog", {})],
+    (True, True, False): [("shift", {}), ("sift", {}), ("xmodal", {}), ("xfeat", {}), ("cfog", {}), ("regions", {}),
+                          ("ndsift-pc", {}), ("cfog", ANY_TURN)],
+    (True, True, True): [("shift", {}), ("sift", {}), ("xmodal", {}), ("xfeat", {}), ("cfog", {})],
+}
+
+# Each step's (refine, precise, rough); a short chain has no precise step.
+FLAGS = {"shift": ("on", False, True), "sift": ("on", True, False), "xmodal": ("auto", True, False),
+         "xfeat": ("on", True, False), "cfog": ("auto", False, False), "regions": ("auto", False, False),
+         "ndsift-pc": ("auto", False, False)}
+
+
+@pytest.mark.parametrize("learned, prior, short", sorted(CHAINS))
+def test_the_chain_of_every_plan(monkeypatch, learned, prior, short):
+    from hamta.core import learned as learned_module
+
+    monkeypatch.delenv("HAMTA_LEARNED", raising=False)
+    monkeypatch.setattr(learned_module, "installed", lambda: learned)
+    chain = auto_module.chain_for("georeferenced" if prior else "search", short)
+    assert [(s.method, dict(s.params)) for s in chain] == CHAINS[learned, prior, short]
+    assert [(s.refine, s.precise, s.rough) for s in chain] == [
+        (refine, precise and not short, rough) for refine, precise, rough in (FLAGS[s.method] for s in chain)]

