@@ -86,7 +86,7 @@ def without_stray_lines(found, order) -> np.ndarray:
         (axis, value), worst = max(per_line.items(), key=lambda kv: kv[1])
         if worst <= max(1.5, 3.0 * float(np.median(list(per_line.values())))):
             break
-        found = found[found[:, axis] != value]
+        found = found[found[:, 4 + axis] != value]  # the keys' axis counts the grid columns (x 0, y 1)
     return found
 
 

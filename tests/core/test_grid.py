@@ -76,3 +76,17 @@ def test_the_grid_steps_are_the_usual_steps_the_hints_fit_largest_first_and_a_st
                                                                                                              1000]
     with pytest.raises(InputError, match="usual step"):
         grid_steps(np.array([[501234.5, 6000000.0]]), (10000, 5000, 2000, 1000, 500, 200, 100))
+
+
+def test_a_grid_line_shifted_as_a_whole_is_left_out_and_the_others_kept():
+    """A line of the map's frame taken for a grid line: its crossings fit the others one by one but not as a
+    line; it alone goes (and the search ends)."""
+    from hamta.core.grid.crossings import without_stray_lines
+
+    gx, gy = np.meshgrid(np.arange(8) * 1000.0, np.arange(7) * 1000.0)
+    grid = np.column_stack([gx.ravel(), gy.ravel()])
+    scan = grid @ np.array([[0.2, 0.01], [-0.01, -0.2]]) + [100.0, 1500.0]
+    scan[grid[:, 0] == 3000.0] += [6.0, 0.0]
+    found = np.column_stack([scan, grid, grid])  # scan x, y, crs x, y, grid x, y
+    kept = without_stray_lines(found, 1)
+    assert len(kept) == len(found) - 7 and not (kept[:, 4] == 3000.0).any()
