@@ -19,6 +19,7 @@ from typing import Optional
 import numpy as np
 
 from ..detectors.regions import BINS, Regions
+from ..estimation.models import LinearModel
 
 
 @dataclass(frozen=True)
@@ -51,9 +52,9 @@ def match_constellation(t: Regions, r: Regions, *, anchors_target: int = 60, anc
     best = None
     for _, i, j, ok, nearest in proposals[:kept]:
         for k in np.flatnonzero(ok):
-            matrix = _two_points(t.xy[[i, k]], r.xy[[j, nearest[k]]])
-            if matrix is None:
+            if np.hypot(*(t.xy[k] - t.xy[i])) < 1e-6:
                 continue
+            matrix = _similarity(t.xy[[i, k]], r.xy[[j, nearest[k]]])
             result = scorer(matrix)
             if best is None or result[0] > best[0]:
                 best = result + (matrix,)
@@ -61,7 +62,7 @@ def match_constellation(t: Regions, r: Regions, *, anchors_target: int = 60, anc
         return None
     for _ in range(2):
         score, ok, nearest, _ = best
-        matrix = _least_squares(t.xy[ok], r.xy[nearest[ok]])
+        matrix = _similarity(t.xy[ok], r.xy[nearest[ok]])
         again = scorer(matrix)
         if again[0] < score:
             break
@@ -108,18 +109,6 @@ class _Scorer:
         return float(best.sum()), ok, nearest
 
 
-def _two_points(src, dst) -> Optional[np.ndarray]:
-    d_src, d_dst = complex(*(src[1] - src[0])), complex(*(dst[1] - dst[0]))
-    if abs(d_src) < 1e-6:
-        return None
-    k = d_dst / d_src
-    a = np.array([[k.real, -k.imag], [k.imag, k.real]])
-    return np.column_stack([a, dst[0] - a @ src[0]])
-
-
-def _least_squares(src, dst) -> np.ndarray:
-    ms, md = src.mean(axis=0), dst.mean(axis=0)
-    zs, zd = (src - ms) @ np.array([1, 1j]), (dst - md) @ np.array([1, 1j])
-    k = (np.conj(zs) @ zd) / max(float(np.sum(np.abs(zs) ** 2)), 1e-12)
-    a = np.array([[k.real, -k.imag], [k.imag, k.real]])
-    return np.column_stack([a, md - a @ ms])
+def _similarity(src, dst) -> np.ndarray:
+    """The least-squares similarity src -> dst (exact through two points), 2 x 3."""
+    return LinearModel.fit("similarity", src, dst).matrix[:2]
