@@ -7,7 +7,7 @@ QVENV := .venv-qgis
 SUDO := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 APT_PACKAGES := qgis python3-qgis qgis-providers python3-numpy python3-scipy python3-opencv python3-rasterio \
 	python3-pyproj python3-shapely python3-distributed python3-cryptography python3-pytest python3-hypothesis python3-venv python3-setuptools python3-wheel gdal-bin \
-	qttools5-dev-tools pyqt5-dev-tools tesseract-ocr
+	qttools5-dev-tools pyqt5-dev-tools tesseract-ocr python3-pil fonts-dejavu-core
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 # The PyPI-wheels half has the 'learned' extra (its tests run there): torch's CPU build where this machine's
 # pip finds one (PyPI's own torch for Linux is a CUDA build of several GB); TORCH=... chooses another.

@@ -50,6 +50,17 @@ class NoConsensusError(InsufficientMatchesError, ValueError):
     agree on. Also a ValueError, which RANSAC raised before this had a class of its own."""
 
 
+class Refused(HamtaError):
+    """A method looked and found nothing it could register (a sheet whose printed grid or labels were not
+    found). ``findings`` (JSON-able) says what was read and tried, for a report; ``written`` the report files
+    written for it."""
+
+    def __init__(self, message: str, findings: dict):
+        super().__init__(message)
+        self.findings = findings
+        self.written = {}
+
+
 class MethodCrashed(Exception):
     """A method's attempt raised something other than a :class:`HamtaError`: a bug in Hamta, not bad
     input nor a pair too hard for the method, so it ends the run (``auto`` does not go on). Not a

@@ -13,12 +13,12 @@ import time
 from typing import Dict, Optional, Tuple
 
 from .auto import AUTO
-from .errors import OutputError, UnverifiedResult
+from .errors import OutputError, Refused, UnverifiedResult
 from .io.raster import input_files, open_raster
 from .io.scope import run_scope
 from .methods import get_method
 from .options import OutputOptions, RegisterOptions
-from .outputs import OutputPaths, write_outputs
+from .outputs import OutputPaths, write_outputs, write_refusal
 from .outputs.atomic import check_creatable_folder
 from .outputs.tags import verdict_text
 from .outputs.warp import check_output_options
@@ -80,8 +80,13 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
     if by_grid:
         from .grid.register import register_grid
 
-        result = register_grid(target, params.crs, params.hints, grid_crs=params.grid_crs, step=params.step,
-                               options=options, progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled)
+        try:
+            result = register_grid(target, params.sheet_crs, params.hints, step=params.step, output_crs=output.crs,
+                                   options=options, progress=lambda f, m: stage.report(f, m), is_canceled=is_canceled)
+        except Refused as exc:
+            if paths is not None and (paths.report or paths.html):
+                exc.written = write_refusal(exc.findings, paths, request)
+            raise
     elif not raster:
         from .remote import register_remote  # its network code is imported only for a map service
 

@@ -18,8 +18,8 @@ from ..coords import apply_matrix, as_xy
 from ..options import canonical_model
 from .tps import ThinPlateSplineModel
 
-MIN_POINTS = {"similarity": 2, "affine": 3, "projective": 4, "polynomial-2": 6, "polynomial-3": 10,
-              "tps": ThinPlateSplineModel.n_min, "linear": 2}
+MIN_POINTS = {"similarity": 2, "affine": 3, "projective": 4, "polynomial-1": 3, "polynomial-2": 6, "polynomial-3": 10,
+              "tps": ThinPlateSplineModel.n_min, "linear": 2}  # polynomial-1: an affine among the orders a fit chooses
 LINEAR_KINDS = ("linear", "similarity", "affine", "projective")
 
 
@@ -166,7 +166,7 @@ POLY_TERMS = ("1", "u", "v", "u^2", "u*v", "v^2", "u^3", "u^2*v", "u*v^2", "v^3"
 
 @dataclass(frozen=True, eq=False)
 class PolynomialModel:
-    """Polynomial of order 2 or 3 in normalised target coordinates ``u = (x - cx) / s``,
+    """Polynomial of order 2 or 3 (1: an affine, where an order is chosen) in normalised target coordinates ``u = (x - cx) / s``,
     ``v = (y - cy) / s``; one coefficient vector per output axis (terms in ``POLY_TERMS`` order)."""
 
     order: int
@@ -182,7 +182,7 @@ class PolynomialModel:
         return MIN_POINTS[self.kind]
 
     def _design(self, xy) -> np.ndarray:
-        return _poly_design((as_xy(xy) - self.center) / self.scale, self.order)
+        return poly_design((as_xy(xy) - self.center) / self.scale, self.order)
 
     def apply(self, xy) -> np.ndarray:
         return self._design(xy) @ self.coef
@@ -198,7 +198,7 @@ class PolynomialModel:
             raise ValueError(f"polynomial-{order} needs at least {need} points, got {len(src)}")
         center = src.mean(axis=0)
         scale = float(np.abs(src - center).max()) or 1.0
-        coef = np.linalg.lstsq(_poly_design((src - center) / scale, order), dst, rcond=None)[0]
+        coef = np.linalg.lstsq(poly_design((src - center) / scale, order), dst, rcond=None)[0]
         return cls(order, center, scale, coef)
 
     def loo_residuals(self, src, dst) -> np.ndarray:
@@ -220,7 +220,8 @@ class PolynomialModel:
                                "coefficients_y": self.coef[:, 1].tolist()}}
 
 
-def _poly_design(uv: np.ndarray, order: int) -> np.ndarray:
+def poly_design(uv: np.ndarray, order: int) -> np.ndarray:
+    """The terms (:data:`POLY_TERMS` order) of ``order`` at normalised coordinates ``uv`` (n, 2)."""
     u, v = uv[:, 0], uv[:, 1]
     cols = [np.ones_like(u), u, v]
     if order >= 2:

@@ -1,14 +1,14 @@
 """The crossings found on a sheet, judged as a whole: the model order the crossings support (leave-one-out),
 each grid line predicted without it (the check that a line of the map's frame, a border or a road taken for
-a grid line fails), and the crossings a robust fit leaves out. Coordinates: rows of scan x, y, crs x, y,
-grid x, y (as :func:`hamta.core.grid.sheet.fit_sheet` finds them)."""
+a grid line fails), and the crossings a robust fit leaves out. Coordinates: rows of scan x, y, plane x, y,
+grid x, y (as :func:`hamta.core.grid.sheet.fit_sheet` finds them; the plane: :mod:`hamta.core.grid.planes`)."""
 from __future__ import annotations
 
 import math
 
 import numpy as np
 
-from .polynomial import apply_poly, fit_poly
+from ..estimation.models import PolynomialModel
 
 MODELS = (("affine", 1, 3, 0.0), ("polynomial-2", 2, 12, 0.5), ("polynomial-3", 3, 30, 0.8))  # name, order, least
 # crossings, least share of the sheet they must cover (a polynomial bends wildly beyond its points, and the whole
@@ -30,17 +30,17 @@ def ordered(found, shape=None) -> int:
     return best
 
 
+def to_scan(found, order: int) -> PolynomialModel:
+    """The polynomial of ``order`` from plane coordinates to scan px fitted on ``found``."""
+    return PolynomialModel.fit(order, found[:, 2:4], found[:, :2])
+
+
 def _loo(found, order) -> float:
-    """RMS (scan px) of each crossing predicted from its crs coordinates by a model fitted on the others."""
-    n = len(found)
-    if n <= MODELS[order - 1][2]:
+    """RMS (scan px) of each crossing predicted from its plane coordinates by a model fitted on the others."""
+    if len(found) <= MODELS[order - 1][2]:
         return math.inf
-    errors = []
-    for i in range(n):
-        keep = np.arange(n) != i
-        coef = fit_poly(found[keep, 2:4], found[keep, :2], order)
-        errors.append(np.hypot(*(apply_poly(coef, found[i:i + 1, 2:4])[0] - found[i, :2])))
-    return float(np.sqrt(np.mean(np.square(errors))))
+    loo = to_scan(found, order).loo_residuals(found[:, 2:4], found[:, :2])
+    return float(np.sqrt(np.nanmean(loo ** 2))) if np.isfinite(loo).any() else math.inf
 
 
 def lines_held_out(src, dst, lines, predictor, least: int):
@@ -52,7 +52,7 @@ def lines_held_out(src, dst, lines, predictor, least: int):
     for axis in (0, 1):
         for value in np.unique(lines[:, axis]):
             on = lines[:, axis] == value
-            if (~on).sum() <= least:
+            if (~on).sum() < least:
                 return np.full((len(src), 2), np.inf), {}
             e = predictor(src[~on], dst[~on])(src[on]) - dst[on]
             per_line[(axis, value)] = float(np.sqrt(np.mean(np.sum(e ** 2, axis=1))))
@@ -63,12 +63,11 @@ def lines_held_out(src, dst, lines, predictor, least: int):
 
 def held_out_lines(found, order):
     """(RMS in scan px, (n, 2) error of each crossing, {(axis, value): RMS of that line}) of each crossing
-    predicted from its crs coordinates by the polynomial of ``order`` fitted without its grid line (see
+    predicted from its plane coordinates by the polynomial of ``order`` fitted without its grid line (see
     :func:`lines_held_out`). A line taken on the sheet's frame or a border, shifted as a whole, fits with the
     others crossing by crossing but not as a line."""
     def predictor(src, dst):
-        coef = fit_poly(src, dst, order)
-        return lambda xy: apply_poly(coef, xy)
+        return PolynomialModel.fit(order, src, dst).apply
 
     errors, per_line = lines_held_out(found[:, 2:4], found[:, :2], found[:, 4:6], predictor, MODELS[order - 1][2])
     if not per_line:
@@ -94,8 +93,7 @@ def trimmed(found, order) -> np.ndarray:
     """``found`` without crossings whose residual is beyond 3 times the median (and 1.5 px), refitted until
     none is: a line of the map's content taken for a grid line."""
     while True:
-        coef = fit_poly(found[:, 2:4], found[:, :2], order)
-        res = np.hypot(*(apply_poly(coef, found[:, 2:4]) - found[:, :2]).T)
+        res = to_scan(found, order).residuals(found[:, 2:4], found[:, :2])
         keep = res <= max(1.5, 3.0 * float(np.median(res)))
         if keep.all() or keep.sum() < max(3, MODELS[order - 1][2] + 1):
             return found

@@ -163,4 +163,12 @@ def write_errors_named():
         raise OutputError(f"Could not write the outputs: {reason}. Nothing was written.") from None
 
 
-__all__ = ["OutputPaths", "write_outputs"]
+def write_refusal(findings: dict, paths: OutputPaths, request: Optional[dict] = None) -> Dict[str, str]:
+    """The report and HTML report (whichever ``paths`` asks for) of a run that found nothing to register (see
+    :mod:`hamta.core.outputs.refusal`)."""
+    from .refusal import write_refusal as write
+
+    return write(findings, paths, request)
+
+
+__all__ = ["OutputPaths", "write_outputs", "write_refusal"]

@@ -1,0 +1,402 @@
+"""Short pieces of text printed along a scan's edges, found and read: what :mod:`hamta.core.grid.labels` parses
+as coordinates.
+
+Finding: each edge band is read at full resolution; printed ink is what stands darker than its surroundings
+(and, for labels printed light on a dark band, lighter); long lines (the neatline, grid lines, rules) are
+taken out so that a label touching its line stays a label; what remains is cut into connected pieces, and
+the glyph-sized ones are strung into words: pieces of similar height side by side, no further apart than a
+glyph. Labels printed along a side edge (turned a quarter) are found in the band turned both ways.
+
+Reading: every word is cut out, scaled so that its glyphs are :data:`GLYPH_PX` high (the height the engine
+reads best, whatever the scan's resolution), and the words are set one under another on a sheet of paper
+read in one go by the engine (Tesseract, the ``tesseract`` program: Debian's ``tesseract-ocr``; its English
+model ships in the package, nothing is downloaded), restricted to the characters coordinates are written
+in. Each line the engine returns is the word set at that height.
+
+Pixels: the scan's (corner convention).
+"""
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass, field, replace
+from typing import Callable, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+TESSERACT_ENV = "HAMTA_TESSERACT"  # the tesseract program, where it is not on the PATH (Windows, macOS)
+GLYPH_PX = 36  # the height words are scaled to for the engine (Tesseract reads best at 30-40 px capitals)
+MIN_GLYPH_PX, MAX_GLYPH_PX = 6, 120  # glyphs smaller are unreadable; larger ones are titles, not labels
+MAX_GLYPHS = 14  # a word longer than this is a sentence, not a label (156°59'30"W has 11)
+WHITELIST = "0123456789°'\"′″’`.,-NSEWnsewOo"
+PAGE_WORDS = 80  # words set on one sheet for the engine
+LONG_LINE = 4.0  # a run of ink this many glyph heights long, straight along x or y, is a line, not text
+
+
+@dataclass(frozen=True)
+class Word:
+    """A word read: its ``text``; ``box`` (x0, y0, x1, y1, scan px, axis-aligned); ``turn`` how the text runs (0:
+    left to right; 90: upwards, read with the scan turned a quarter clockwise; -90: downwards); ``glyph_px`` its
+    glyphs' height on the scan; ``confidence`` the engine's (0-100); ``light``: light glyphs on a dark ground."""
+
+    text: str
+    box: Tuple[float, float, float, float]
+    turn: int
+    glyph_px: float
+    confidence: float
+    light: bool = False
+    crop: Optional[np.ndarray] = field(default=None, repr=False, compare=False)  # as the engine read it
+
+    @property
+    def xy(self) -> Tuple[float, float]:
+        return (self.box[0] + self.box[2]) / 2, (self.box[1] + self.box[3]) / 2
+
+
+@dataclass(frozen=True)
+class _Found:
+    """A word found but not read yet: its crop (grey, upright, dark glyphs on light), box and how it runs."""
+
+    crop: np.ndarray
+    box: Tuple[float, float, float, float]
+    turn: int
+    glyph_px: float
+    light: bool
+
+
+def tesseract() -> Optional[str]:
+    """The tesseract program to run, or None where it is not installed."""
+    given = os.environ.get(TESSERACT_ENV)
+    if given:
+        return given if os.path.isfile(given) else shutil.which(given)
+    found = shutil.which("tesseract")
+    if found:
+        return found
+    for path in (r"C:\Program Files\Tesseract-OCR\tesseract.exe", r"C:\Program Files (x86)\Tesseract-OCR\tesseract.exe",
+                 "/opt/homebrew/bin/tesseract", "/usr/local/bin/tesseract", "/opt/local/bin/tesseract"):
+        if os.path.isfile(path):
+            return path
+    return None
+
+
+def find_words(grey: np.ndarray, turns: Sequence[int] = (0,)) -> List[_Found]:
+    """The words printed in ``grey`` (a band of the scan, uint8), dark on light and light on a dark ground, running
+    in each of ``turns`` (0, 90, -90); boxes in ``grey``'s px."""
+    import cv2
+
+    out = []
+    for turn in turns:
+        image = grey if turn == 0 else cv2.rotate(grey, cv2.ROTATE_90_CLOCKWISE if turn == 90 else
+                                                  cv2.ROTATE_90_COUNTERCLOCKWISE)
+        for light in (False, True):
+            if light and np.mean(image < DARK_GROUND) < 0.01:
+                continue  # no dark ground to print light labels on
+            page = 255 - image if light else image
+            ink, lines, paper = _ink(page)
+            clean = page.copy()
+            clean[lines > 0] = paper[lines > 0]  # lines painted as paper
+            seen = []
+            for box, glyph in _words(ink):
+                if any(_overlap(box, b) > 0.6 for b in seen):
+                    continue
+                seen.append(box)
+                x0, y0, x1, y1 = box
+                pad = int(round(0.35 * glyph))
+                crop = clean[max(y0 - pad, 0):y1 + pad, max(x0 - pad, 0):x1 + pad]
+                if light and np.median(image[max(y0 - pad, 0):y1 + pad, max(x0 - pad, 0):x1 + pad]) > DARK_GROUND:
+                    continue  # light marks on a light ground: gaps between dark strokes, not words
+                out.append(_Found(crop, _unturn(box, turn, grey.shape), turn, glyph, light))
+    return out
+
+
+DARK_GROUND = 110  # grey level below which a word's surroundings are a dark ground for light glyphs
+
+
+def _unturn(box, turn, shape) -> Tuple[float, float, float, float]:
+    """A box of the band turned by ``turn`` as a box of the band itself."""
+    x0, y0, x1, y1 = box
+    h, w = shape
+    if turn == 90:  # turned clockwise: (x, y) of the turned image is (h - y, x) of... the band's (y, h - x)
+        return float(y0), float(h - x1), float(y1), float(h - x0)
+    if turn == -90:
+        return float(w - y1), float(x0), float(w - y0), float(x1)
+    return float(x0), float(y0), float(x1), float(y1)
+
+
+def _words(ink: np.ndarray):
+    """(box x0, y0, x1, y1; glyph height) of each word on the ``ink`` mask: as it is, and opened by 3 and 5 px
+    (which parts a label from thin linework that touches it: a coast, a contour)."""
+    import cv2
+
+    for size in (0, 3, 5):
+        mask = ink if not size else cv2.morphologyEx(ink, cv2.MORPH_OPEN,
+                                                      cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (size, size)))
+        yield from _strung(mask, min_glyph=MIN_GLYPH_PX if not size else 3 * size)
+
+
+def _strung(ink: np.ndarray, min_glyph: int):
+    """Words of the connected pieces of ``ink``: glyph-sized pieces strung together (see the module docstring)."""
+    import cv2
+
+    n, _, stats, _ = cv2.connectedComponentsWithStats(ink, connectivity=8)
+    x, y, w, h, area = (stats[1:, i] for i in range(5))
+    glyph = (h >= min_glyph) & (h <= MAX_GLYPH_PX) & (w <= 1.6 * h + 4) & (area >= 0.08 * w * h)
+    small = (h >= 2) & (h < MIN_GLYPH_PX * 2) & (w <= MAX_GLYPH_PX) & ~glyph  # degree signs, primes, dots
+    index = np.flatnonzero(glyph)
+    if not len(index):
+        return
+    order = index[np.argsort(x[index])]
+    parent = {int(i): int(i) for i in order}
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for a, i in enumerate(order):  # each glyph joined to those just right of it, of like height and row
+        for j in order[a + 1:]:
+            gap = x[j] - (x[i] + w[i])
+            size = max(h[i], h[j])
+            if gap > 0.9 * size:
+                break
+            overlap = min(y[i] + h[i], y[j] + h[j]) - max(y[i], y[j])
+            if overlap >= 0.5 * min(h[i], h[j]) and max(h[i], h[j]) <= 1.8 * min(h[i], h[j]):
+                parent[find(int(j))] = find(int(i))
+    groups = {}
+    for i in order:
+        groups.setdefault(find(int(i)), []).append(int(i))
+    smalls = np.flatnonzero(small | (glyph & (h < 0.6 * MAX_GLYPH_PX)))
+    for members in groups.values():
+        if len(members) > MAX_GLYPHS:
+            continue
+        m = np.array(members)
+        x0, y0 = int(x[m].min()), int(y[m].min())
+        x1, y1 = int((x[m] + w[m]).max()), int((y[m] + h[m]).max())
+        size = float(np.median(h[m]))
+        if x1 - x0 > MAX_GLYPHS * 0.8 * size:
+            continue  # longer than a label's glyphs set side by side: a name, a sentence
+        near = smalls[(x[smalls] >= x0 - 0.9 * size) & (x[smalls] + w[smalls] <= x1 + 1.2 * size)
+                      & (y[smalls] >= y0 - 0.4 * size) & (y[smalls] + h[smalls] <= y0 + 0.6 * size)
+                      & (h[smalls] < 0.6 * size)]
+        if len(near):  # a degree sign or a prime just beyond the digits belongs to the word
+            x0, y0 = min(x0, int(x[near].min())), min(y0, int(y[near].min()))
+            x1 = max(x1, int((x[near] + w[near]).max()))
+        if len(m) == 1 and not len(near):
+            continue  # a lone glyph is no coordinate (a label has two characters at least)
+        yield (x0, y0, x1, y1), size
+
+
+def _ink(page: np.ndarray):
+    """(dark glyphs on ``page`` without long straight lines, the lines taken out: uint8 masks, 255 = ink; the
+    paper around them)."""
+    import cv2
+
+    block = 2 * (MAX_GLYPH_PX // 2) + 1
+    background = cv2.dilate(page, cv2.getStructuringElement(cv2.MORPH_RECT, (block // 3 | 1, block // 3 | 1)))
+    background = cv2.blur(background, (block, block))
+    contrast = background.astype(np.int16) - page.astype(np.int16)
+    level = max(float(np.percentile(contrast, 99)) * 0.35, 25.0)  # a fraction of the band's darkest ink: its own
+    ink = (contrast >= level).astype(np.uint8) * 255  # statistics (25 grey levels at least: the paper's grain)
+    length = int(LONG_LINE * 2 * MIN_GLYPH_PX * 2)
+    lines = cv2.morphologyEx(ink, cv2.MORPH_OPEN, cv2.getStructuringElement(cv2.MORPH_RECT, (length, 1)))
+    lines |= cv2.morphologyEx(ink, cv2.MORPH_OPEN, cv2.getStructuringElement(cv2.MORPH_RECT, (1, length)))
+    lines = cv2.dilate(lines, np.ones((3, 3), np.uint8))
+    return cv2.subtract(ink, lines), lines, background
+
+
+ENGINE_ENV = "HAMTA_OCR"  # 'rapidocr' or 'tesseract': one engine alone, where both are installed
+
+
+def engines() -> Tuple[str, ...]:
+    """The OCR engines labels are read with, in the order they read: Tesseract (the ``tesseract`` program) first,
+    as it reads a word in a fifth of the time, then RapidOCR's recogniser (the package ``rapidocr_onnxruntime``,
+    its models in its wheel), which reads the words with a digit in them again: it read the development sheets'
+    labels better (docs/benchmarks.md). Either alone where only one is installed, or where ``HAMTA_OCR`` names
+    it; empty without either."""
+    have = tuple(name for name, ok in (("tesseract", tesseract() is not None), ("rapidocr", _rapid() is not None))
+                 if ok)
+    asked = os.environ.get(ENGINE_ENV, "").strip().lower()
+    return (asked,) if asked in have else have
+
+
+def engine() -> Optional[str]:
+    """The engine whose reading is kept (the last of :func:`engines`), or None without one."""
+    found = engines()
+    return found[-1] if found else None
+
+
+INSTALL = ("Reading the sheet's printed labels needs an OCR engine: the Tesseract program (Debian, Ubuntu: 'sudo apt "
+           "install tesseract-ocr'; Windows: the installer from UB Mannheim; macOS: 'brew install tesseract'; or set "
+           "HAMTA_TESSERACT to the program), or 'pip install rapidocr_onnxruntime' into the Python QGIS or Hamta "
+           "runs in; docs/scanned-maps.md says how. Without one, give two or three crossings with their coordinates "
+           "as hints (a QGIS Georeferencer .points file).")
+
+
+def read_words(found: List[_Found], offset=(0.0, 0.0), name: Optional[str] = None,
+               check: Callable[[], None] = lambda: None) -> List[Word]:
+    """Read ``found`` (boxes offset by ``offset`` scan px) with the engine ``name`` (the first of :func:`engines`
+    by default); words read with no digit are left out. Raises :class:`hamta.core.errors.InputError` without an
+    engine."""
+    from ..errors import InputError
+
+    names = engines()
+    if not names:
+        raise InputError(INSTALL)
+    name = name or names[0]
+    out = []
+    for start in range(0, len(found), PAGE_WORDS):
+        check()
+        page = found[start:start + PAGE_WORDS]
+        crops = [_scaled(f.crop) for f in page]
+        for item, crop, (text, conf) in zip(page, crops, _read(name, crops)):
+            if any(c.isdigit() for c in text):
+                x0, y0, x1, y1 = item.box
+                out.append(Word(text, (x0 + offset[0], y0 + offset[1], x1 + offset[0], y1 + offset[1]), item.turn,
+                                item.glyph_px, conf, item.light, crop))
+    return out
+
+
+def reread(words: List[Word], name: str, check: Callable[[], None] = lambda: None) -> List[Word]:
+    """``words`` read again by the engine ``name`` (what it reads with no digit left out)."""
+    out = []
+    for start in range(0, len(words), PAGE_WORDS):
+        check()
+        page = words[start:start + PAGE_WORDS]
+        for w, (text, conf) in zip(page, _read(name, [w.crop for w in page])):
+            if any(c.isdigit() for c in text):
+                out.append(replace(w, text=text, confidence=conf))
+    return out
+
+
+def _read(name: str, crops: List[np.ndarray]) -> List[Tuple[str, float]]:
+    return _read_rapid(crops) if name == "rapidocr" else _read_page(tesseract(), crops)
+
+
+def _scaled(crop: np.ndarray) -> np.ndarray:
+    """A word's crop with its glyphs :data:`GLYPH_PX` high, stretched from its ink to its paper."""
+    import cv2
+
+    h = max(crop.shape[0], 1)
+    f = GLYPH_PX / max(h / 1.7, 1.0)  # the crop is the glyphs and 0.35 of a glyph above and below
+    scaled = cv2.resize(crop, (max(int(round(crop.shape[1] * f)), 1), max(int(round(h * f)), 1)),
+                        interpolation=cv2.INTER_CUBIC if f > 1 else cv2.INTER_AREA)
+    return _normalised(scaled)
+
+
+_RAPID = {}
+
+
+def _rapid():
+    """RapidOCR's text recogniser (``rapidocr_onnxruntime``, its model from its own wheel), or None."""
+    if "rec" not in _RAPID:
+        try:
+            import rapidocr_onnxruntime
+            from rapidocr_onnxruntime.ch_ppocr_rec import TextRecognizer
+        except ImportError:
+            _RAPID["rec"] = None
+        else:
+            folder = os.path.dirname(rapidocr_onnxruntime.__file__)
+            _RAPID["rec"] = TextRecognizer({"model_path": os.path.join(folder, "models", "ch_PP-OCRv4_rec_infer.onnx"),
+                                            "rec_img_shape": [3, 48, 320], "rec_batch_num": 6, "use_cuda": False,
+                                            "use_dml": False, "intra_op_num_threads": 1, "inter_op_num_threads": 1})
+    return _RAPID["rec"]
+
+
+def _read_rapid(crops: List[np.ndarray]) -> List[Tuple[str, float]]:
+    """(text, confidence 0-100) of each crop by RapidOCR's recogniser."""
+    import cv2
+
+    results, _ = _rapid()([cv2.cvtColor(c, cv2.COLOR_GRAY2BGR) for c in crops])
+    return [(text.strip(), 100.0 * float(conf)) for text, conf in results]
+
+
+def _read_page(program: str, crops: List[np.ndarray]) -> List[Tuple[str, float]]:
+    """(text, confidence) of each crop (scaled already), set one under another on one page and read in one go by
+    Tesseract."""
+    import cv2
+
+    gap = GLYPH_PX
+    width = max(s.shape[1] for s in crops) + 2 * gap
+    rows, y = [], gap
+    for s in crops:
+        rows.append((y, y + s.shape[0]))
+        y += s.shape[0] + gap
+    sheet = np.full((y, width), 255, np.uint8)
+    for s, (y0, y1) in zip(crops, rows):
+        sheet[y0:y1, gap:gap + s.shape[1]] = s
+    with tempfile.TemporaryDirectory(prefix="hamta-ocr-") as folder:
+        path = os.path.join(folder, "words.png")
+        cv2.imwrite(path, sheet)
+        try:
+            tsv = subprocess.run([program, path, "stdout", "--psm", "6", "-c", f"tessedit_char_whitelist={WHITELIST}",
+                                  "tsv"], capture_output=True, text=True, timeout=120, check=False,
+                                 env=dict(os.environ, OMP_THREAD_LIMIT="1")).stdout
+        except (OSError, subprocess.TimeoutExpired):
+            return [("", 0.0)] * len(crops)
+    texts = [[] for _ in crops]
+    confs = [[] for _ in crops]
+    centres = np.array([(a + b) / 2 for a, b in rows])
+    for line in tsv.splitlines()[1:]:
+        cells = line.split("\t")
+        if len(cells) < 12 or not cells[11].strip():
+            continue
+        try:
+            left, top, w, h, conf = (float(c) for c in cells[6:11])
+        except ValueError:
+            continue
+        k = int(np.argmin(np.abs(centres - (top + h / 2))))
+        if rows[k][0] - gap / 2 <= top + h / 2 <= rows[k][1] + gap / 2:
+            texts[k].append((left, cells[11].strip()))
+            confs[k].append(conf)
+    return [(" ".join(t for _, t in sorted(words)), float(np.mean(c)) if c else 0.0)
+            for words, c in zip(texts, confs)]
+
+
+def _normalised(crop: np.ndarray) -> np.ndarray:
+    """A word's crop stretched from its ink to its paper (what the engine binarises well)."""
+    lo, hi = np.percentile(crop, 2), np.percentile(crop, 90)
+    if hi - lo < 1:
+        return crop
+    return np.clip((crop.astype(np.float32) - lo) * 255.0 / (hi - lo), 0, 255).astype(np.uint8)
+
+
+def bands(width: int, height: int, depth_share: float, longest: int) -> List[Tuple[str, Tuple[int, int, int, int]]]:
+    """(side, window x0, y0, x1, y1) of pieces of each edge band ``depth_share`` of the shorter side deep, at most
+    ``longest`` px long (overlapping by a band's depth, so a label cut at one piece's end is whole in the next)."""
+    depth = max(int(depth_share * min(width, height)), 1)
+    out = []
+    for side in ("top", "bottom", "left", "right"):
+        along = width if side in ("top", "bottom") else height
+        step = max(longest - depth, 1)
+        for a0 in range(0, along, step):
+            a1 = min(a0 + longest, along)
+            if side == "top":
+                out.append((side, (a0, 0, a1, depth)))
+            elif side == "bottom":
+                out.append((side, (a0, height - depth, a1, height)))
+            elif side == "left":
+                out.append((side, (0, a0, depth, a1)))
+            else:
+                out.append((side, (width - depth, a0, width, a1)))
+            if a1 == along:
+                break
+    return out
+
+
+def unique(words: List[Word]) -> List[Word]:
+    """Words found twice (overlapping pieces, two polarities) kept once: the more confident."""
+    kept: List[Word] = []
+    for w in sorted(words, key=lambda w: -w.confidence):
+        if not any(_overlap(w.box, k.box) > 0.5 for k in kept):
+            kept.append(w)
+    return kept
+
+
+def _overlap(a, b) -> float:
+    ix = max(0.0, min(a[2], b[2]) - max(a[0], b[0]))
+    iy = max(0.0, min(a[3], b[3]) - max(a[1], b[1]))
+    inter = ix * iy
+    smaller = min((a[2] - a[0]) * (a[3] - a[1]), (b[2] - b[0]) * (b[3] - b[1]))
+    return inter / smaller if smaller > 0 else 0.0
