@@ -10,7 +10,7 @@ import sys
 import time
 from typing import List, Optional
 
-from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
+from ..core.errors import HamtaError, MethodCrashed, Refused, RegistrationCanceled
 from ..core.text import terminal_safe
 from .options import FLAGS, settings_from
 from .parser import build_parser
@@ -45,8 +45,10 @@ def cmd_register(args) -> int:
         if args.reference is not None:
             raise ValueError("--method grid georeferences a sheet by its own printed grid: give no --reference")
         method, params = "grid", dict(params, hints=args.gcps)
-    elif args.gcps is not None:
-        raise ValueError("--gcps gives hints to a sheet georeferenced by its own grid: leave out --reference")
+        if args.sheet_crs:
+            params["sheet_crs"] = args.sheet_crs
+    elif args.gcps is not None or args.sheet_crs is not None:
+        raise ValueError("--gcps and --sheet-crs are for a sheet georeferenced by its own grid: leave out --reference")
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format, overwrite=args.overwrite,
                                   only=None if args.outputs is None else args.outputs.split(","))
     if args.scheduler:
@@ -129,7 +131,7 @@ def cmd_batch(args) -> int:
         raise ValueError(f"--workers must be at least 1 (default: the CPU count), got {args.workers}")
     options, output = settings_from(args)
     _outside_the_cache(args.out)
-    jobs = read_jobs(args.source, args.out, args.reference)
+    jobs = read_jobs(args.source, args.out, args.reference, args.sheet_crs)
     settings = BatchSettings(method=args.method, options=options, output=output,
                              accept_unverified=args.accept_unverified, overwrite=args.overwrite)
     result = run_batch(jobs, settings, scheduler=args.scheduler, workers=args.workers,
@@ -299,6 +301,11 @@ def _main(argv) -> int:
     except RegistrationCanceled as exc:
         print(f"hamta: {exc}", file=sys.stderr)
         return EXIT_CANCELED
+    except Refused as exc:  # found nothing to register: its report says what was read and tried
+        print(f"hamta: error: {explain(exc)}", file=sys.stderr)
+        for name, path in exc.written.items():
+            print(f"{name:8s} {path}")
+        return EXIT_ERROR
     except HamtaError as exc:
         print(f"hamta: error: {explain(exc)}", file=sys.stderr)
         return EXIT_ERROR

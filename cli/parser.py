@@ -52,14 +52,13 @@ def _add_register(sub) -> None:
                                                       "or WMS layer source, or a GDAL string (/vsicurl/..., WMTS:..., "
                                                       "WCS:..., a GDAL WMS XML file); see --extent. Without it, a "
                                                       "scanned sheet is georeferenced by its own printed grid: give "
-                                                      "--crs (the sheet's), and --gcps where its labels cannot be "
-                                                      "read")
+                                                      "--sheet-crs, and --gcps where its labels cannot be read")
     r.add_argument("--gcps", default=None, metavar="HINTS.points",
                    help="without --reference: two or three crossings of the sheet's printed grid placed roughly with "
                         "their coordinates, as the QGIS Georeferencer saves them (mapX, mapY: the printed coordinates, "
-                        "in degrees or in the grid's metres; --param step=... and --param grid_crs=... where they do "
-                        "not tell the grid); without it, the labels printed in the sheet's margins are read "
-                        "(Tesseract)")
+                        "in degrees or in the grid's units; --param step=... where they do not tell the grid's step); "
+                        "without it, the labels printed in the sheet's margins are read (OCR: Tesseract or RapidOCR)")
+    _add_sheet_crs(r)
     r.add_argument("--target", required=True, help="raster to georeference")
     r.add_argument("--out", required=True, help="output folder (created if missing)")
     r.add_argument("--method", default="auto",
@@ -79,11 +78,22 @@ def _add_register(sub) -> None:
                         "(distributed.comm.tls.*), tcp:// is unauthenticated; default: threads of this process")
 
 
+def _add_sheet_crs(parser) -> None:
+    parser.add_argument("--sheet-crs", default=None, metavar="CRS",
+                        help="without --reference: what the coordinates printed on the sheet count in (EPSG:4326 or "
+                             "EPSG:4269 for degrees of a graticule, whatever projection it is drawn in; the national "
+                             "grid's CRS for its metres, feet or yards); the output is in --crs if given, else in it "
+                             "(a projected one) or in the projection the graticule is found drawn in. Without it, "
+                             "--crs stands for it")
+
+
 def _add_batch(sub) -> None:
     bt = sub.add_parser("batch", help="register many targets, in parallel on Dask (a local cluster or a scheduler)",
                         description="Register every pair of SOURCE: a job list (.csv or .gpkg with columns target, "
-                                    "reference, method, model, extent, output) or a folder/glob of targets registered "
-                                    "onto --reference. Each pair writes into its own folder under --out (a row's "
+                                    "reference, method, model, extent, crs, hints, output) or a folder/glob of targets "
+                                    "registered onto --reference, or each by its own printed grid (scanned sheets: "
+                                    "--sheet-crs, no --reference). Each pair writes into its own folder under --out "
+                                    "(a row's "
                                     "output: a relative folder inside --out); a rerun skips "
                                     "pairs already done. Exit code: 0 all verified, 3 some not verified, 1 some "
                                     "failed.")
@@ -92,6 +102,7 @@ def _add_batch(sub) -> None:
     bt.add_argument("--reference", default=None, help="the reference for targets from a folder or pattern (a raster, "
                                                       "a VRT mosaic or a map service, as for 'register')")
     bt.add_argument("--method", default="auto", help="matching method of every pair (a job's own overrides it)")
+    _add_sheet_crs(bt)
     add_options(bt)
     bt.add_argument("--overwrite", action="store_true",
                     help="replace files in a pair's folder that Hamta did not write there (that pair fails otherwise)")

@@ -82,7 +82,7 @@ RESAMPLING = Choice("resampling", {
     "q3": "Third quartile",
 }, "bilinear", aliases={"near": "nearest", "cubic_spline": "cubicspline"})
 
-GRID = Choice("grid", {
+PIXEL_GRID = Choice("pixel_grid", {
     "auto": "Automatic",
     "reference": "Reference pixel grid",
     "native": "Target's native resolution",
@@ -344,10 +344,10 @@ class OutputOptions:
 
     resampling: str = option(RESAMPLING.default, "Resampling", "resampling of the warped output", advanced=False,
                              choice=RESAMPLING)
-    grid: str = option(
-        GRID.default, "Output pixel grid", "output pixel grid: the reference's, the target's own resolution, "
+    pixel_grid: str = option(
+        PIXEL_GRID.default, "Output pixel grid", "output pixel grid: the reference's, the target's own resolution, "
         "auto (the reference's when the resolutions are within 10 %), or target: the target's pixels unchanged under "
-        "a corrected geotransform (where the model is a shift and scale, in the reference CRS)", choice=GRID)
+        "a corrected geotransform (where the model is a shift and scale, in the reference CRS)", choice=PIXEL_GRID)
     resolution: Optional[float] = option(
         None, "Output pixel size (output CRS units)", "output pixel size in output CRS units (overrides the grid's)",
         minimum=0, above=True, unset="from the pixel grid")

@@ -252,8 +252,8 @@ def details_text(ended: Ended) -> str:
     lines = [tr("'{}' onto '{}'").format(job.target_name, job.reference.name()) if job.reference is not None
              else tr("'{}' by its own printed grid").format(job.target_name)]
     if v is not None:
-        lines.append(tr("Independent check: {}; {} of {} sites agree; error within {} (tolerance {})").format(
-            tr(v.verdict), v.n_agree, v.n_sites, error_text(job, result, v.error_bound_px) or "–",
+        lines.append(tr("Independent check: {}; {}; error within {} (tolerance {})").format(
+            tr(v.verdict), v.summary(), error_text(job, result, v.error_bound_px) or "–",
             error_text(job, result, v.tolerance_px)))
         lines += [f"  – {reason}" for reason in v.reasons]
     if not result.verified and ended.write_s is None:  # once kept, what may help is past

@@ -103,7 +103,7 @@ class RegisterTask(_Ends, QgsTask):
     def _grid_params(self):
         from ..core.grid.register import GridParams
 
-        return GridParams(self.grid["hints"], self.grid["crs"])
+        return GridParams(self.grid["hints"], self.grid["crs"])  # the sheet's CRS: what its coordinates count in
 
     def _block_feedback(self):
         """A feedback that :meth:`cancel` cancels: the layer's read stops with the task."""

@@ -26,7 +26,7 @@ from qgis.PyQt.QtCore import QCoreApplication
 from ..core import RegisterOptions, UnverifiedResult, run
 from ..core.advice import advice
 from ..core.auto import AUTO
-from ..core.errors import HamtaError, MethodCrashed, RegistrationCanceled
+from ..core.errors import HamtaError, MethodCrashed, Refused, RegistrationCanceled
 from ..core.methods import get_method
 from ..core.options import LABEL_CHARS, option_fields, resolve_options
 from ..core.outcome import attempt_lines
@@ -248,6 +248,10 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
                                   is_canceled=feedback.isCanceled)
         except RegistrationCanceled:
             raise QgsProcessingException(self.tr("Registration canceled; no outputs were written.")) from None
+        except Refused as exc:
+            report = exc.written.get("html") or exc.written.get("report")
+            raise QgsProcessingException(self.explain(exc) + (self.tr(" What was read and tried: {}").format(report)
+                                                              if report else "")) from None
         except UnverifiedResult as exc:
             self._log(exc.result, feedback)
             raise QgsProcessingException(self.tr(
@@ -315,8 +319,8 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
             feedback.pushInfo(note)
         v = result.verification
         if v.verified:
-            feedback.pushInfo(self.tr("Verified by an independent check: {} of {} sites agree; estimated error within "
-                                      "{}.").format(v.n_agree, v.n_sites, length_text(result, v.error_bound_px)))
+            feedback.pushInfo(self.tr("Verified by an independent check: {}; estimated error within {}.").format(
+                v.summary(), length_text(result, v.error_bound_px)))
         else:
             feedback.reportError(self.tr("NOT VERIFIED ({}): {}").format(v.verdict, "; ".join(v.reasons)))
             for tip in advice(result):

@@ -16,7 +16,7 @@ machine: the ratios are what counts, not the seconds.
 - ``inter1``: AROSICS's own test pair INTER1 (Sentinel-2A, T33UUU, 2016-05-29 onto 2016-06-08, 10 m; in the
   ``arosics`` 0.9.26 source package under ``tests/data/testcase_inter1_S2A_S2A/``), when ``HAMTA_INTER1``
   names that folder (``tools/fetch_inter1.sh`` fetches it): Hamta writing the raster only, resampled and
-  with its pixels untouched (``--grid target --model linear``), and with ``--local``, against AROSICS
+  with its pixels untouched (``--pixel-grid target --model linear``), and with ``--local``, against AROSICS
   COREG (and COREG_LOCAL, grid 50 px, one run). Neither tool's own figure is the score: each corrected
   raster is judged by phase correlation in 256 px windows against the reference (:func:`residual`).
 - ``small-optical``: the first pairs of the multimodal set's Optical-Optical category (JPEGs of about
@@ -93,7 +93,7 @@ COREG_LOCAL(sys.argv[1], sys.argv[2], grid_res=50, path_out=sys.argv[3], fmt_out
 """
 INTER1 = ("ref_S2A_20160608T153121_T33UUU_sub.tif", "tgt_S2A_20160529T153631_T33UUU_sub.tif")
 INTER1_OUTPUTS = ["--outputs", "raster,report"]  # the raster, and the JSON report the bench reads (a few kB)
-INTER1_RUNS = {"global": INTER1_OUTPUTS, "untouched": INTER1_OUTPUTS + ["--grid", "target", "--model", "linear"],
+INTER1_RUNS = {"global": INTER1_OUTPUTS, "untouched": INTER1_OUTPUTS + ["--pixel-grid", "target", "--model", "linear"],
                "local": INTER1_OUTPUTS + ["--local"]}
 
 

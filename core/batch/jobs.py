@@ -1,10 +1,14 @@
 """What a batch registers: one :class:`Job` per target/reference pair, its reference resolved.
 
 Sources: a CSV file or a GeoPackage table with a ``target`` column and optional ``reference``,
-``method``, ``model``, ``extent`` (a search area, see :mod:`hamta.core.extent`) and ``output``
-columns (rasters relative to the list's folder; a reference may also be a map service or a GDAL
-string, kept as written: :func:`hamta.core.reference.resolve_reference`, once per row); or a folder or
-glob pattern of targets, all registered onto one reference (a raster or a VRT mosaic). A row's
+``method``, ``model``, ``extent`` (a search area, see :mod:`hamta.core.extent`), ``crs`` and ``hints`` (a
+scanned sheet georeferenced by its own printed grid: the CRS its printed coordinates count in, and a QGIS
+``.points`` file of two or three crossings) and ``output`` columns (rasters relative to the list's folder; a
+reference may also be a map service or a GDAL string, kept as written:
+:func:`hamta.core.reference.resolve_reference`, once per row); or a folder or glob pattern of targets, all
+registered onto one reference (a raster or a VRT mosaic), or each by its own grid (a map series: the sheets'
+CRS given, no reference). A row without a reference is a sheet by its grid where it, or the batch, names the
+sheets' CRS. A row's
 ``output`` is a folder inside ``out``, relative to it: an absolute path, a ``..`` that leaves
 ``out``, or two rows with the same folder are refused before any work. A job without its own output
 folder gets ``<out>/<target name>`` (made unique when names repeat or another row uses it).
@@ -30,31 +34,46 @@ RASTER_EXTENSIONS = (".tif", ".tiff", ".vrt", ".jp2", ".img", ".jpg", ".jpeg", "
 
 @dataclass(frozen=True)
 class Job:
-    """One pair: the target, its resolved reference, where its outputs go, and the method/model when they
-    differ from the batch's."""
+    """One pair: the target, its resolved reference (None: a scanned sheet georeferenced by its own printed grid,
+    whose printed coordinates count in ``sheet_crs``, from the ``hints`` file where given), where its outputs go,
+    and the method/model when they differ from the batch's."""
 
     target: str
-    reference: Reference
+    reference: Optional[Reference]
     out: str
     method: Optional[str] = None
     model: Optional[str] = None
     extent: Optional[str] = None
+    sheet_crs: Optional[str] = None
+    hints: Optional[str] = None
 
     @property
     def key(self) -> str:
         """A stable id of the job (same inputs, method, search area and output folder: same key)."""
-        text = "|".join([self.target, self.reference.text, self.out, self.method or "", self.model or ""]
+        text = "|".join([self.target, self.reference_text, self.out, self.method or "", self.model or ""]
                         + ([self.extent] if self.extent else []))
         return hashlib.sha1(text.encode()).hexdigest()[:16]
+
+    @property
+    def reference_text(self) -> str:
+        if self.reference is not None:
+            return self.reference.text
+        return f"grid:{self.sheet_crs or ''}:{self.hints or ''}"
+
+    @property
+    def reference_label(self) -> str:
+        return self.reference.label if self.reference is not None else "its own printed grid"
 
     @property
     def name(self) -> str:
         return os.path.basename(self.out)
 
 
-def read_jobs(source: str, out: str, reference: Union[str, Reference, None] = None) -> List[Job]:
+def read_jobs(source: str, out: str, reference: Union[str, Reference, None] = None,
+              sheet_crs: Optional[str] = None) -> List[Job]:
     """The jobs of ``source`` (a .csv or .gpkg list, a folder, or a glob of targets with ``reference``:
-    text, resolved here, or a resolved reference)."""
+    text, resolved here, or a resolved reference; or, without one, ``sheet_crs``: scanned sheets georeferenced by
+    their own grid)."""
     if source.lower().endswith((".csv", ".gpkg")) and not os.path.exists(source):
         raise InputError(f"The job list '{source}' does not exist.")
     if source.lower().endswith(".csv") and os.path.isfile(source):
@@ -62,14 +81,15 @@ def read_jobs(source: str, out: str, reference: Union[str, Reference, None] = No
     elif source.lower().endswith(".gpkg") and os.path.isfile(source):
         rows = _gpkg_rows(source)
     else:
-        if reference is None:
+        if reference is None and not sheet_crs:
             raise InputError(f"'{source}' is not a .csv or .gpkg job list; targets from a folder or pattern need a "
-                             "reference (--reference).")
+                             "reference (--reference), or, for scanned sheets georeferenced by their own printed "
+                             "grid, the CRS of their printed coordinates (--sheet-crs).")
         rows = [{"target": t} for t in _targets(source)]
         if not rows:
             raise InputError(f"No raster matches '{source}'.")
     base = os.path.dirname(os.path.abspath(source)) if os.path.isfile(source) else os.getcwd()
-    return _jobs(rows, base, out, reference, f"the job list '{source}'")
+    return _jobs(rows, base, out, reference, f"the job list '{source}'", sheet_crs)
 
 
 def jobs_for_targets(targets: List[str], reference: Union[str, Reference], out: str) -> List[Job]:
@@ -78,8 +98,9 @@ def jobs_for_targets(targets: List[str], reference: Union[str, Reference], out: 
     return _jobs([{"target": t} for t in targets], os.getcwd(), out, reference, "the targets")
 
 
-def _jobs(rows: list, base: str, out: str, reference, source: str) -> List[Job]:
-    """Jobs from ``rows`` (dicts of the list's columns), rasters relative to ``base``."""
+def _jobs(rows: list, base: str, out: str, reference, source: str, sheet_crs: Optional[str] = None) -> List[Job]:
+    """Jobs from ``rows`` (dicts of the list's columns), rasters relative to ``base``; a row without a reference
+    where none is given is a sheet by its grid, in its ``crs`` or ``sheet_crs``."""
     root = os.path.abspath(out)
     default = _reference(reference, os.getcwd())
     outputs = _outputs(rows, root, source)
@@ -89,8 +110,13 @@ def _jobs(rows: list, base: str, out: str, reference, source: str) -> List[Job]:
         if not target:
             raise InputError(f"Row {i} of {source} has no target.")
         ref = _reference(row.get("reference"), base) or default
-        if not ref:
-            raise InputError(f"Row {i} of {source} has no reference, and no --reference was given.")
+        crs = (row.get("crs") or "").strip() or sheet_crs
+        hints = _path(row.get("hints"), base)
+        if not ref and not crs:
+            raise InputError(f"Row {i} of {source} has no reference, and no --reference was given (a scanned sheet "
+                             "by its own grid: a 'crs' column, or --sheet-crs).")
+        if ref and hints:
+            raise InputError(f"Row {i} of {source} has a reference and hints: hints are for a sheet by its own grid.")
         folder = outputs.get(i) or _unique(os.path.join(root, _stem(target)), used)
         used.add(folder)
         if not _inside(os.path.realpath(folder), os.path.realpath(root)):
@@ -110,7 +136,7 @@ def _jobs(rows: list, base: str, out: str, reference, source: str) -> List[Job]:
                 MODEL.check(model)
         except ValueError as exc:
             raise InputError(f"Row {i} of {source}: {exc}.") from None
-        jobs.append(Job(target, ref, folder, method, model, extent))
+        jobs.append(Job(target, ref, folder, method, model, extent, None if ref else crs, None if ref else hints))
     return jobs
 
 
@@ -157,7 +183,7 @@ def _csv_rows(path: str) -> list:
         raise InputError(f"The job list '{path}' could not be read as CSV ({exc}).") from None
     if rows and "target" not in rows[0]:
         raise InputError(f"The job list '{path}' has no 'target' column (columns: target, reference, method, model, "
-                         "output).")
+                         "extent, crs, hints, output).")
     return rows
 
 

@@ -55,7 +55,8 @@ def register_job(job: Job, settings: BatchSettings) -> dict:
     try:
         paths = OutputPaths.in_folder(job.out, raster_format=settings.output.format, overwrite=settings.overwrite)
         run(job.target, job.reference, paths, method=method, options=options, output=settings.output,
-            accept_unverified=settings.accept_unverified, map_chunks=_cluster_map() if settings.spread_local else None)
+            params=_grid_params(job), accept_unverified=settings.accept_unverified,
+            map_chunks=_cluster_map() if settings.spread_local else None)
     except UnverifiedResult:
         pass  # its report says why; the record reads it
     except (HamtaError, MethodCrashed, ValueError, ArithmeticError, MemoryError) as exc:  # this pair fails
@@ -65,10 +66,15 @@ def register_job(job: Job, settings: BatchSettings) -> dict:
 
 
 def job_request(job: Job, settings: BatchSettings):
-    """(method, RegisterOptions) of ``job``: the batch's, with the job's own method, model and extent."""
+    """(method, RegisterOptions) of ``job``: the batch's, with the job's own method, model and extent; a sheet by
+    its own grid: 'grid'."""
     options = settings.options if job.model is None else replace(settings.options, model=job.model)
     options = options if job.extent is None else replace(options, extent=job.extent)
-    return job.method or settings.method, options
+    return ("grid" if job.reference is None else job.method or settings.method), options
+
+
+def _grid_params(job: Job) -> Optional[dict]:
+    return None if job.reference is not None else {"sheet_crs": job.sheet_crs, "hints": job.hints}
 
 
 def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
@@ -91,8 +97,9 @@ def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
         with open(report, encoding="utf-8") as f:
             rep = json.load(f)
         same = (os.path.abspath(rep["target"]["path"]) == job.target
-                and _same_reference(rep["reference"], job.reference)
-                and rep.get("request") == run_request(method, None, options, settings.accept_unverified)
+                and (job.reference is None or _same_reference(rep["reference"], job.reference))
+                and rep.get("request") == run_request(method, _request_params(job), options,
+                                                      settings.accept_unverified)
                 and rep.get("output_options") == json.loads(json.dumps(asdict(settings.output))))
     except (OSError, ValueError, KeyError, TypeError, HamtaError):
         return None
@@ -101,6 +108,15 @@ def finished_record(job: Job, settings: BatchSettings) -> Optional[dict]:
     record = from_report(job, method, rep.get("timings_s", {}).get("total", 0.0), rep)
     record["resumed"] = True
     return record
+
+
+def _request_params(job: Job):
+    """A job's method parameters as its run's request keeps them."""
+    if job.reference is None:
+        from ..grid.register import GridParams
+
+        return GridParams.make(_grid_params(job), OutputOptions())
+    return None
 
 
 def _same_reference(described: dict, reference: Reference) -> bool:
@@ -144,7 +160,7 @@ def failed_record(job: Job, method: str, seconds: float, message: str) -> dict:
 
 
 def _record(job: Job, method: str, status: str, seconds: float, **fields) -> dict:
-    record = {"key": job.key, "name": job.name, "target": job.target, "reference": job.reference.label,
+    record = {"key": job.key, "name": job.name, "target": job.target, "reference": job.reference_label,
               "out": job.out,
               "method": method, "status": status, "time_s": round(float(seconds), 3), "method_used": None,
               "verdict": None, "error_bound_px": None, "rmse_px": None, "n_gcps": None, "outputs": {},

@@ -166,8 +166,9 @@ POLY_TERMS = ("1", "u", "v", "u^2", "u*v", "v^2", "u^3", "u^2*v", "u*v^2", "v^3"
 
 @dataclass(frozen=True, eq=False)
 class PolynomialModel:
-    """Polynomial of order 2 or 3 (1: an affine, where an order is chosen) in normalised target coordinates ``u = (x - cx) / s``,
-    ``v = (y - cy) / s``; one coefficient vector per output axis (terms in ``POLY_TERMS`` order)."""
+    """Polynomial of order 2 or 3 (1: an affine, where an order is chosen) in normalised target coordinates
+    ``u = (x - cx) / s``, ``v = (y - cy) / s``; one coefficient vector per output axis (terms in ``POLY_TERMS``
+    order)."""
 
     order: int
     center: np.ndarray

@@ -207,6 +207,7 @@ PEAK = 3.0  # robust deviations above its median a segment's profile must peak t
 
 OFF_LATTICE = np.linspace(0.15, 0.85, 15)  # of a step: where each line is moved to see what the sheet's content
 # alone puts along it (beyond the printed line's width on a line map reduced to 24 px a step)
+LEAST_COPIES = 8  # copies of a line on the sheet it is judged against (a step wider than the sheet leaves fewer)
 P_CHANCE = 0.15  # the share of lines of a lattice fitted where no grid is printed that stand above all their
 # moved copies (calibrated: tools/calibrate_grid.py, on imagery and maps without a grid; see docs/benchmarks.md)
 CHANCE = 1e-4  # the probability by chance of as many lines standing out, in both families together, below which a
@@ -277,45 +278,81 @@ class Evidence:
                 "families": [f.to_dict() for f in self.families]}
 
 
-def evidence(work: np.ndarray, factor: int, lines, axes, lattice: Lattice, steps: np.ndarray) -> Optional[Evidence]:
-    """The :class:`Evidence` of ``lattice``'s lines (plane points, ``axes`` 0 or 1 each) on ``work``; ``steps``:
-    scan px of one grid step along each grid axis. None where a family has no line on the sheet."""
+def evidence(work: np.ndarray, factor: int, lines, axes, lattice: Lattice, steps: np.ndarray, values=None,
+             pieces=()) -> Optional[Evidence]:
+    """The :class:`Evidence` of ``lattice``'s lines (plane points, ``axes`` 0 or 1 each, ``values`` their grid
+    coordinates) on ``work``; ``steps``: scan px of one grid step along each grid axis; ``pieces``: (axis, value,
+    plane points) of pieces of grid lines that a grid printed as crosses or ticks inks alone (around each
+    crossing; where a line meets the frame, :func:`hamta.core.grid.frame.tick_pieces`): a line is printed where
+    it, or one of its pieces, holds more ink than every copy of itself moved across by part of a step. None where
+    a family has no line on the sheet."""
     from scipy.stats import binom
 
-    ink = _ink(work, factor, outside=math.nan)
+    ink = _ink(work, factor, outside=math.nan, least=0.05)  # a line crossing a corner of the sheet counts
+    by_line = {}
+    for axis, value, xy in pieces:
+        by_line.setdefault((axis, round(value, 9)), []).append(xy)
     families: List[Family] = []
+    def stands(px, axis):
+        """(ink of the line at ``px``, its copies' inks, whether it holds more than all) or None off the sheet; the
+        copies moved the way that keeps them on the sheet (a line near its edge)."""
+        value = ink(px)
+        if not np.isfinite(value):
+            return None
+        ahead = np.array([ink(px + f * steps[axis]) for f in OFF_LATTICE])
+        copies = ahead if np.isfinite(ahead).all() else np.where(
+            np.isfinite(ahead), ahead, [ink(px - f * steps[axis]) for f in OFF_LATTICE])
+        if np.isfinite(copies).sum() < LEAST_COPIES:
+            return None
+        return value, copies, bool(value > np.nanmax(copies))
+
     for axis in (0, 1):
-        here, moved = [], []
-        for line, a in zip(lines, axes):
+        here, moved, printed, whole = [], [], 0, []
+        for k, (line, a) in enumerate(zip(lines, axes)):
             if a != axis:
                 continue
-            px = lattice.model.apply(line)
-            value = ink(px)
-            copies = [ink(px + f * steps[axis]) for f in OFF_LATTICE]
-            if not np.isfinite([value] + copies).all():  # off the sheet
+            found = stands(lattice.model.apply(line), axis)
+            if found is None:  # off the sheet
                 continue
+            value, copies, alone = found
             here.append(value)
             moved.append(copies)
+            whole.append(alone)
+            for xy in (by_line.get((axis, round(values[k], 9)), []) if values is not None else []):
+                tick = stands(lattice.model.apply(xy), axis)
+                alone |= tick is not None and tick[2]
+            printed += bool(alone)
         if not here:
             return None
-        here, moved = np.array(here), np.array(moved)
-        printed = int(np.sum(here > moved.max(axis=1)))
-        background = float(np.median(moved.mean(axis=0)))
-        above = float(here.mean()) - background
-        copy = float(moved.mean(axis=0).max()) - background
+        here, moved, whole = np.array(here), np.array(moved), np.array(whole)
+        background = float(np.nanmedian(moved))
         families.append(Family(axis, len(here), printed, float(here.mean()) / max(background, 1e-12),
-                               copy / above if above > 0 else math.inf,
+                               _copy_share(here[whole], moved[whole]),
                                float(binom.sf(printed - 1, len(here), P_CHANCE))))
     return Evidence(tuple(families))
+
+
+def _copy_share(here, moved) -> float:
+    """Of the lines printed whole, the ink their strongest copy moved by part of a step keeps above the copies'
+    median, as a share of theirs (0 without such lines: ticks alone, whose copies find other ticks and so do not
+    stand out)."""
+    if not len(here):
+        return 0.0
+    with np.errstate(all="ignore"):
+        by_move = np.nanmean(moved, axis=0)  # each move's copies, over the lines (NaN: off the sheet both ways)
+    background = float(np.nanmedian(by_move))
+    above = float(here.mean()) - background
+    copy = float(np.nanmax(by_move)) - background
+    return copy / above if above > 0 else math.inf
 
 
 def _num(v):
     return float(v) if np.isfinite(v) else None
 
 
-def _ink(image: np.ndarray, factor: int, outside: float = 0.0):
+def _ink(image: np.ndarray, factor: int, outside: float = 0.0, least: float = 0.2):
     """px (n, 2, scan px) -> the mean of ``image`` (a reduced line map) there, over the points inside it
-    (``outside`` where fewer than a fifth are)."""
+    (``outside`` where fewer than ``least`` of them, or than 8, are)."""
     import cv2
 
     h, w = image.shape
@@ -323,7 +360,7 @@ def _ink(image: np.ndarray, factor: int, outside: float = 0.0):
     def ink(px) -> float:
         x, y = px[:, 0] / factor - 0.5, px[:, 1] / factor - 0.5
         inside = (x >= 0) & (y >= 0) & (x <= w - 1) & (y <= h - 1)
-        if inside.sum() < 0.2 * len(px):
+        if inside.sum() < max(least * len(px), 8):
             return outside
         n = int(inside.sum())
         rows = -(-n // ROW)  # remap takes fewer than 32767 columns a row

@@ -39,20 +39,21 @@ class Crossing:
     ink: float = 0.0
 
 
-def crossing(source, xy, directions, radius: float, along: Optional[float] = None) -> Optional[Crossing]:
+def crossing(source, xy, directions, radius: float, along=None) -> Optional[Crossing]:
     """The crossing nearest ``xy`` of two lines running along ``directions`` (two unit vectors, scan px):
     each line is the sub-pixel peak of the :func:`line_map` of ``source`` (a
     :class:`hamta.core.grid.scan.LineSource`) averaged along it over ``along`` px each way (a long strip: a
-    grid line is long and straight, what else is drawn is not) at offsets up to ``radius`` px across it.
-    None where either line does not stand out (:data:`PROMINENCE`) or the strips leave the scan."""
-    along = max(along or 3.0 * radius, radius)
-    window = source.around(xy, along + radius + 2)
+    grid line is long and straight, what else is drawn is not; a pair: each line's, a tick's short) at offsets up
+    to ``radius`` px across it. None where either line does not stand out (:data:`PROMINENCE`) or the strips
+    leave the scan."""
+    alongs = [max(a or 3.0 * radius, radius) for a in (along if isinstance(along, (tuple, list)) else (along,) * 2)]
+    window = source.around(xy, max(alongs) + radius + 2)
     if window is None:
         return None
     lines, x0, y0 = window
     found, strength, ink = [], math.inf, math.inf
-    for dx, dy in directions:
-        profile = _strip(lines, (xy[0] - x0, xy[1] - y0), (dx, dy), along, radius)
+    for (dx, dy), reach in zip(directions, alongs):
+        profile = _strip(lines, (xy[0] - x0, xy[1] - y0), (dx, dy), reach, radius)
         if profile is None:
             return None
         offsets = (np.arange(len(profile)) - (len(profile) - 1) / 2) / STEPS_PER_PX

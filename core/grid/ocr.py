@@ -32,7 +32,6 @@ MIN_GLYPH_PX, MAX_GLYPH_PX = 6, 120  # glyphs smaller are unreadable; larger one
 MAX_GLYPHS = 14  # a word longer than this is a sentence, not a label (156°59'30"W has 11)
 WHITELIST = "0123456789°'\"′″’`.,-NSEWnsewOo"
 PAGE_WORDS = 80  # words set on one sheet for the engine
-LONG_LINE = 4.0  # a run of ink this many glyph heights long, straight along x or y, is a line, not text
 
 
 @dataclass(frozen=True)
@@ -141,7 +140,7 @@ def _strung(ink: np.ndarray, min_glyph: int):
 
     n, _, stats, _ = cv2.connectedComponentsWithStats(ink, connectivity=8)
     x, y, w, h, area = (stats[1:, i] for i in range(5))
-    glyph = (h >= min_glyph) & (h <= MAX_GLYPH_PX) & (w <= 1.6 * h + 4) & (area >= 0.08 * w * h)
+    glyph = (h >= min_glyph) & (h <= MAX_GLYPH_PX) & (w <= 8 * h) & (area >= 0.08 * w * h)  # touching glyphs: a run
     small = (h >= 2) & (h < MIN_GLYPH_PX * 2) & (w <= MAX_GLYPH_PX) & ~glyph  # degree signs, primes, dots
     index = np.flatnonzero(glyph)
     if not len(index):
@@ -196,12 +195,15 @@ def _ink(page: np.ndarray):
     block = 2 * (MAX_GLYPH_PX // 2) + 1
     background = cv2.dilate(page, cv2.getStructuringElement(cv2.MORPH_RECT, (block // 3 | 1, block // 3 | 1)))
     background = cv2.blur(background, (block, block))
-    contrast = background.astype(np.int16) - page.astype(np.int16)
-    level = max(float(np.percentile(contrast, 99)) * 0.35, 25.0)  # a fraction of the band's darkest ink: its own
-    ink = (contrast >= level).astype(np.uint8) * 255  # statistics (25 grey levels at least: the paper's grain)
-    length = int(LONG_LINE * 2 * MIN_GLYPH_PX * 2)
-    lines = cv2.morphologyEx(ink, cv2.MORPH_OPEN, cv2.getStructuringElement(cv2.MORPH_RECT, (length, 1)))
-    lines |= cv2.morphologyEx(ink, cv2.MORPH_OPEN, cv2.getStructuringElement(cv2.MORPH_RECT, (1, length)))
+    contrast = np.maximum(background.astype(np.int16) - page.astype(np.int16), 0).astype(np.uint8)
+    noise = 1.4826 * float(np.median(np.abs(contrast.astype(np.float32) - np.median(contrast))))
+    near = cv2.dilate(contrast, cv2.getStructuringElement(cv2.MORPH_RECT, (block // 2 | 1, block // 2 | 1)))
+    level = np.maximum(0.45 * near.astype(np.float32), max(4.0 * noise, 12.0))  # each glyph against the darkest
+    ink = (contrast >= level).astype(np.uint8) * 255  # ink near it (a faint label beside a bold title), and above
+    # the paper's grain (four robust deviations of the band's contrast)
+    lines = np.zeros_like(ink)
+    for kernel in _line_kernels():
+        lines |= cv2.morphologyEx(ink, cv2.MORPH_OPEN, kernel)
     lines = cv2.dilate(lines, np.ones((3, 3), np.uint8))
     return cv2.subtract(ink, lines), lines, background
 
@@ -234,11 +236,32 @@ INSTALL = ("Reading the sheet's printed labels needs an OCR engine: the Tesserac
            "as hints (a QGIS Georeferencer .points file).")
 
 
+def _line_kernels():
+    """Straight runs :data:`LINE_PX` long, along x and y and turned a little each way (a scan is rarely square to
+    its sheet): what an opening by them keeps is a line, not a glyph."""
+    import cv2
+
+    if not _KERNELS:
+        n = LINE_PX
+        for turn in (-3.0, -1.5, 0.0, 1.5, 3.0):
+            kernel = np.zeros((n, n), np.uint8)
+            t = np.tan(np.radians(turn))
+            c = n // 2
+            for x in range(n):
+                kernel[int(round(c + (x - c) * t)), x] = 1
+            _KERNELS.extend([kernel, cv2.rotate(kernel, cv2.ROTATE_90_CLOCKWISE)])
+    return _KERNELS
+
+
+_KERNELS: list = []
+LINE_PX = 49  # longer than any glyph a label is read at (MAX_GLYPH_PX is a title's), shorter than a neatline's side
+
+
 def read_words(found: List[_Found], offset=(0.0, 0.0), name: Optional[str] = None,
                check: Callable[[], None] = lambda: None) -> List[Word]:
     """Read ``found`` (boxes offset by ``offset`` scan px) with the engine ``name`` (the first of :func:`engines`
-    by default); words read with no digit are left out. Raises :class:`hamta.core.errors.InputError` without an
-    engine."""
+    by default); every word is kept, read or not (another engine may read it, :func:`reread`). Raises
+    :class:`hamta.core.errors.InputError` without an engine."""
     from ..errors import InputError
 
     names = engines()
@@ -251,22 +274,20 @@ def read_words(found: List[_Found], offset=(0.0, 0.0), name: Optional[str] = Non
         page = found[start:start + PAGE_WORDS]
         crops = [_scaled(f.crop) for f in page]
         for item, crop, (text, conf) in zip(page, crops, _read(name, crops)):
-            if any(c.isdigit() for c in text):
-                x0, y0, x1, y1 = item.box
-                out.append(Word(text, (x0 + offset[0], y0 + offset[1], x1 + offset[0], y1 + offset[1]), item.turn,
-                                item.glyph_px, conf, item.light, crop))
+            x0, y0, x1, y1 = item.box
+            out.append(Word(text, (x0 + offset[0], y0 + offset[1], x1 + offset[0], y1 + offset[1]), item.turn,
+                            item.glyph_px, conf, item.light, crop))
     return out
 
 
 def reread(words: List[Word], name: str, check: Callable[[], None] = lambda: None) -> List[Word]:
-    """``words`` read again by the engine ``name`` (what it reads with no digit left out)."""
+    """``words`` read again by the engine ``name``."""
     out = []
     for start in range(0, len(words), PAGE_WORDS):
         check()
         page = words[start:start + PAGE_WORDS]
-        for w, (text, conf) in zip(page, _read(name, [w.crop for w in page])):
-            if any(c.isdigit() for c in text):
-                out.append(replace(w, text=text, confidence=conf))
+        out += [replace(w, text=text, confidence=conf) for w, (text, conf) in zip(page, _read(name, [w.crop
+                                                                                                    for w in page]))]
     return out
 
 
@@ -362,31 +383,35 @@ def _normalised(crop: np.ndarray) -> np.ndarray:
     return np.clip((crop.astype(np.float32) - lo) * 255.0 / (hi - lo), 0, 255).astype(np.uint8)
 
 
-def bands(width: int, height: int, depth_share: float, longest: int) -> List[Tuple[str, Tuple[int, int, int, int]]]:
-    """(side, window x0, y0, x1, y1) of pieces of each edge band ``depth_share`` of the shorter side deep, at most
-    ``longest`` px long (overlapping by a band's depth, so a label cut at one piece's end is whole in the next)."""
-    depth = max(int(depth_share * min(width, height)), 1)
+def bands(width: int, height: int, inner: float, longest: int, outer: float = 0.0
+          ) -> List[Tuple[str, Tuple[int, int, int, int]]]:
+    """(side, window x0, y0, x1, y1) of pieces of each edge's band from ``outer`` to ``inner`` of the shorter side
+    in from the edge, at most ``longest`` px long (overlapping by the band's depth, and the bands by a tenth of
+    theirs, so that a label cut at one piece's end is whole in the next)."""
+    short = min(width, height)
+    d0 = max(int(outer * short) - int(0.1 * (inner - outer) * short), 0) if outer else 0
+    d1 = max(int(inner * short), d0 + 1)
     out = []
     for side in ("top", "bottom", "left", "right"):
         along = width if side in ("top", "bottom") else height
-        step = max(longest - depth, 1)
+        step = max(longest - (d1 - d0), 1)
         for a0 in range(0, along, step):
             a1 = min(a0 + longest, along)
             if side == "top":
-                out.append((side, (a0, 0, a1, depth)))
+                out.append((side, (a0, d0, a1, d1)))
             elif side == "bottom":
-                out.append((side, (a0, height - depth, a1, height)))
+                out.append((side, (a0, height - d1, a1, height - d0)))
             elif side == "left":
-                out.append((side, (0, a0, depth, a1)))
+                out.append((side, (d0, a0, d1, a1)))
             else:
-                out.append((side, (width - depth, a0, width, a1)))
+                out.append((side, (width - d1, a0, width - d0, a1)))
             if a1 == along:
                 break
     return out
 
 
 def unique(words: List[Word]) -> List[Word]:
-    """Words found twice (overlapping pieces, two polarities) kept once: the more confident."""
+    """Words found twice (overlapping pieces, two polarities, two turns) kept once: the more confident."""
     kept: List[Word] = []
     for w in sorted(words, key=lambda w: -w.confidence):
         if not any(_overlap(w.box, k.box) > 0.5 for k in kept):

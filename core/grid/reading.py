@@ -27,11 +27,12 @@ from typing import Dict, List, Optional, Tuple
 import numpy as np
 
 from .check import LABEL_REACH, LabelAgreement
-from .labels import FULL_DIGITS, Label, joined, parse
+from .labels import FULL_DIGITS, Label, joined, normalised, parse
 from .ocr import INSTALL, bands, engine, engines, find_words, read_words, reread, unique
-from .steps import describe, divisors, fitting, usual_steps
+from .steps import FIT, TYPED, describe, divisors
 
-BAND = 0.12  # of the sheet's shorter side: how deep each edge's band is read
+BAND = 0.12  # of the sheet's shorter side: how deep each edge's band is read first (labels of a sheet scanned
+WIDE = 0.25  # with its margins), then how deep where the first band gives no line of an axis (a wide scanner bed)
 CHUNK_PX = 4000  # a band is read in pieces this long (memory), overlapping by the band's depth
 REACH_GLYPHS = 2.0  # glyph heights: how far from the line its edge's labels fit a label may lie (labels are set
 # beside their line or tick, as far on each)
@@ -164,21 +165,31 @@ def read_sheet(source, info, sheet_crs, monitor) -> Reading:
 
         words = pooled(again, chunks)
         reading = _interpreted(words, info, sheet_crs)
-    if reading.failed:  # then words turned a quarter, along the edges of an axis not read yet
-        failed = reading.failed
-        more = [piece for piece in pieces if any(piece[0] in SIDES[axis] for axis in failed)]
-        progress["total"] += len(more)
-        words += pooled(read, [(piece, (90, -90), names[-1]) for piece in more])
+    for more in ("deeper", "turned"):
+        if not reading.failed:
+            break
+        sides = [side for axis in reading.failed for side in SIDES[axis]]
+        if more == "deeper":  # the band further in, along the edges of an axis not read yet
+            jobs = [(piece, (0,), names[-1]) for piece in bands(info.width, info.height, WIDE, CHUNK_PX, BAND)
+                    if piece[0] in sides]
+        else:  # words turned a quarter, in the whole depth
+            jobs = [(piece, (90, -90), names[-1]) for piece in bands(info.width, info.height, WIDE, CHUNK_PX)
+                    if piece[0] in sides]
+        progress["total"] += len(jobs)
+        words += pooled(read, jobs)
         reading = _interpreted(words, info, sheet_crs)
     return reading
 
 
 def _interpreted(words, info, sheet_crs) -> Reading:
-    kept = unique([w for _, w in words])
-    side_of = {id(w): side for side, w in words}
-    labels = [lab for lab in (parse(w, side_of[id(w)]) for w in kept) if lab is not None]
+    """The :class:`Reading` of ``words`` ((side, word) pairs: a word in a corner is read along both its edges)."""
+    labels, count = [], 0
+    for side in ("top", "bottom", "left", "right"):
+        kept = unique([w for s, w in words if s == side and any(c.isdigit() for c in w.text)])
+        count += len(kept)
+        labels += [lab for lab in (parse(w, side) for w in kept) if lab is not None]
     reading = interpret(joined(labels), info.width, info.height, sheet_crs)
-    reading.words = len(kept)
+    reading.words = count
     return reading
 
 
@@ -268,13 +279,11 @@ def _candidates(labels: List[Label], usable: List[int], geographic: bool) -> Dic
         lab = labels[i]
         if lab.digits >= FULL_DIGITS:
             out[i] = [(lab.number, True)]
-        elif full and lab.digits >= 2:  # abbreviated: the value's last digits, in the unit's thousands
-            mod = 10 ** len(str(int(lab.number)))
-            values = set()
+        elif full and lab.digits <= 2 and len(normalised(lab.text)) == 2:  # abbreviated: the kilometres' last
+            values = set()  # two digits, as topographic sheets print them between full values (85 for 6 785 000)
             for f in full:
-                for unit in (1000.0, 1.0):  # kilometres' digits (topographic sheets), or the value's own
-                    base = math.floor(f / unit / mod) * mod
-                    values |= {(base + k * mod + lab.number) * unit for k in (-1, 0, 1)}
+                base = math.floor(f / 1000 / 100) * 100
+                values |= {(base + k * 100 + lab.number) * 1000 for k in (-1, 0, 1)}
             out[i] = [(v, False) for v in sorted(values) if v > 0]
     return out
 
@@ -416,19 +425,26 @@ def _warp(value: float, mercator: bool) -> float:
 
 
 def _steps(values, geographic: bool) -> Optional[List[float]]:
-    """The steps to try one axis's lines at: its labels' own step and the usual steps that divide it and every
-    value."""
+    """The steps to try one axis's lines at: its labels' own step (the median difference between neighbouring
+    values: a label misread, or one missing, does not change it) and the usual steps that divide it and most
+    values (:data:`STEP_SHARE`)."""
     values = np.unique(np.round(np.abs(values), 9))
     if len(values) < 2:
         return None
     diffs = np.diff(values)
-    label_step = float(diffs[diffs > 1e-9].min())
-    usual = fitting(values, usual_steps(geographic))
-    steps = [s for s in divisors(label_step, geographic, STEP_SPAN) if s in usual]
-    if not steps or abs(steps[0] - label_step) > 1e-9 * max(label_step, 1):
-        if all(abs(v / label_step - round(v / label_step)) < 0.005 for v in values):
-            steps = [label_step] + steps  # a step no list holds (10 000 yards in a metre CRS...)
+    label_step = float(np.median(diffs[diffs > 1e-9]))
+
+    def divides(step):
+        off = np.abs(values - np.round(values / step) * step)
+        return np.mean(off <= min(FIT * step, TYPED[geographic])) >= STEP_SHARE
+
+    steps = [s for s in divisors(label_step, geographic, STEP_SPAN) if divides(s)]
+    if (not steps or abs(steps[0] - label_step) > 1e-9 * max(label_step, 1)) and divides(label_step):
+        steps = [label_step] + steps  # a step no list holds (10 000 yards in a metre CRS...)
     return steps or None
+
+
+STEP_SHARE = 0.75  # of an axis's label values, those a step must divide (a misread label need not)
 
 
 def _crossings(families, width: int, height: int) -> np.ndarray:

@@ -111,7 +111,7 @@ def register_grid(target, sheet_crs: str, hints: Optional[Sequence] = None, *, s
             monitor.report(0.5 if hints is None else 0.05, "grid: reading the scan")
             opened = time.perf_counter()
             steps = [[step], [step]] if step else (reading.steps if reading else None)
-            fit = fit_sheet(source, rows, printed, steps, drawn_in,
+            fit = fit_sheet(source, rows, printed, steps, drawn_in, placed_by_hand=hints is not None,
                             progress=monitor.span(0.5 if hints is None else 0.05, 0.9))
     except (RegistrationCanceled, OutputError):
         raise

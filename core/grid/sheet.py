@@ -25,7 +25,8 @@ import numpy as np
 from ..errors import InputError
 from ..estimation.models import LinearModel
 from .crossings import ordered, spread_of, to_scan, trimmed, without_stray_lines
-from .lattice import Evidence, evidence, fit_lattice
+from .frame import find_frames, node_pieces, tick_pieces
+from .lattice import Evidence, _ink, evidence, fit_lattice
 from .lines import crossing
 from .planes import Plane, planes_for
 from .scan import LineSource
@@ -76,7 +77,7 @@ class SheetFit:
     found; the ``plane`` and ``step`` (along grid x, along grid y) of the lattice kept and its ``evidence``;
     ``order`` of the polynomial from the plane to the scan the crossings support; ``spread`` the share of the sheet
     they cover; ``reachable`` the crossings the lattice puts where both their lines can be looked at, near those
-    found; ``apart_px`` the largest distance between the crossings' model and the lattice (``apart_limit_px`` what a
+    found; ``apart_px`` the RMS distance between the crossings' model and the lattice (``apart_limit_px`` what a
     sound sheet allows); ``tried`` every lattice tried; ``notes``."""
 
     crossings: np.ndarray
@@ -99,13 +100,15 @@ class SheetFit:
         return len(self.crossings) / max(self.reachable, 1)
 
 
-def fit_sheet(scan, hints: Sequence, sheet_crs, steps=None, drawn_in=None, progress=None) -> SheetFit:
+def fit_sheet(scan, hints: Sequence, sheet_crs, steps=None, drawn_in=None, progress=None,
+              placed_by_hand: bool = True) -> SheetFit:
     """Find the sheet's printed crossings from ``hints`` (rows of scan x, y, grid x, y in ``sheet_crs``, a pyproj
     CRS); ``steps``: the grid's steps to try along grid x and along grid y (two lists, largest first; None: those
     the hints' coordinates fit); ``drawn_in``: a projected CRS the user says the sheet is drawn in (tried first).
     ``scan``: a :class:`LineSource`, or the scan as a grey 2-D array. Raises :class:`NoGridFound` where no lattice
     of the hints' steps is printed, and :class:`InputError` for hints the printed lattice contradicts (naming the
-    hint). ``progress``: a :class:`hamta.core.progress.Monitor` (reports, and raises where the user cancelled)."""
+    hint placed by hand; ``placed_by_hand`` False: hints made of labels, which the check holds to the lattice
+    itself). ``progress``: a :class:`hamta.core.progress.Monitor` (reports, and raises where the user cancelled)."""
     from ..progress import Monitor
 
     monitor = progress or Monitor(None, None)
@@ -133,10 +136,12 @@ def fit_sheet(scan, hints: Sequence, sheet_crs, steps=None, drawn_in=None, progr
         raise NoGridFound(_not_found(tried, geographic), tried, geographic)
     best = (best[0], _lattice(source, works, best[0], hints, best[1].step, bend=True) or best[1])
     plane, lat = best
-    _check_hints(hints, plane.forward(hints[:, 2:]), lat.lattice.model, lat.spacing)
     monitor.report(0.6, "grid: each crossing")
     fit = _crossings(source, plane, lat, monitor)
     fit.tried = tried
+    if placed_by_hand:
+        _check_hints(hints, plane.forward(hints[:, 2:]), to_scan(fit.crossings, fit.order)
+                     if len(fit.crossings) >= 6 else lat.lattice.model, lat.spacing)
     lines = [len(np.unique(fit.crossings[:, 4 + a])) for a in (0, 1)]
     if len(fit.crossings) < 3 or min(lines) < 2:
         raise NoGridFound(f"Only {len(fit.crossings)} crossings of the printed grid were found ({lines[0]} and "
@@ -159,8 +164,9 @@ def _printed(source, works, plane: Plane, hints, steps, tried, geographic: bool)
         tried.append(Attempt(plane.name, step, None if found is None else found.evidence,
                              math.nan if found is None else found.spacing,
                              math.nan if found is None else found.lattice.straight))
-        if found is None:
-            return None
+        if found is None:  # too few of its lines on the sheet, or its crossings too close: the next smaller steps
+            ix, iy = ix + 1, iy + 1
+            continue
         if found.evidence.printed:
             return found
         fx, fy = (family.stands for family in found.evidence.families)
@@ -181,6 +187,7 @@ class _Placed:
     spacing: float
     factor: int
     step: tuple
+    frames: tuple = ()
 
 
 def _lattice(source, works, plane: Plane, hints, step, bend: bool = False) -> Optional[_Placed]:
@@ -200,45 +207,132 @@ def _lattice(source, works, plane: Plane, hints, step, bend: bool = False) -> Op
         return None
     factor = _factor(spacing, source.shape)
     work = _work(source, works, factor)
-    lines, axes = _grid_lines(nodes, step, plane, spacing / factor)
+    lines, axes, values = _grid_lines(nodes, step, plane, spacing / factor)
     if not lines:
         return None
     lattice = fit_lattice(work, factor, lines, start, spacing, bend)
     steps = _steps(lattice.model, nodes, plane, step)
-    found = evidence(work, factor, lines, axes, lattice, steps)
+    frames = find_frames(_ink(work, factor, outside=math.nan), lattice.model, plane, nodes, step)
+    found = evidence(work, factor, lines, axes, lattice, steps, values,
+                     node_pieces(nodes, step, plane) + tick_pieces(frames, nodes, step, plane))
     if found is None:
         return None
-    return _Placed(nodes, lattice, found, float(min(np.hypot(*steps.T))), factor, tuple(step))
+    return _Placed(nodes, lattice, found, float(min(np.hypot(*steps.T))), factor, tuple(step), tuple(frames))
 
 
 def _crossings(source, plane: Plane, placed: _Placed, monitor) -> SheetFit:
-    """Every crossing of the lattice ``placed``, found where it is printed and judged as a whole."""
+    """Every crossing of the lattice ``placed`` and every tick on its frame, found where it is printed and judged
+    as a whole. Rows: scan x, y, plane x, y, grid x, y; then ``kind`` (-1 a crossing of two grid lines; else a
+    tick on the frame line of that index, whose coordinate across the frame is the frame's, estimated) and the
+    frame's direction on the scan (unit x, y; 0 for crossings)."""
     shape = source.shape
     spacing, factor, nodes = placed.spacing, placed.factor, placed.nodes
     step = np.asarray(placed.step, float)
+    frames = list(placed.frames)
     model = placed.lattice.model
     radius = max(3.0, 0.6 * factor, LOCAL_SHARE * spacing)
-    found = _found(source, nodes, model, plane, step, radius, spacing, monitor.check)
+
+    def look(model, radius):
+        inner = _found(source, nodes, model, plane, step, radius, spacing, monitor.check)
+        inner = np.column_stack([inner, np.full((len(inner), 3), [-1.0, 0.0, 0.0])])
+        return np.vstack([inner, _ticks(source, frames, nodes, model, plane, step, radius, spacing, monitor.check)])
+
+    found = look(model, radius)
     for _ in range(PASSES):  # again, where the crossings found put the others (the lattice is placed on a
         # reduced line map: off by a few px where the paper or the projection bends)
-        if len(found) < 3 or len(found) == len(nodes):
+        if len(found) < 3:
             break
+        frames = _frames_refined(frames, found, shape, plane)
         again = trimmed(found, ordered(found, shape))
-        more = _found(source, nodes, to_scan(again, ordered(again, shape)), plane, step,
-                      max(radius, 2 * LOCAL_SHARE * spacing), spacing, monitor.check)
+        more = look(to_scan(again, ordered(again, shape)), max(radius, 2 * LOCAL_SHARE * spacing))
         if len(more) <= len(found):
             break
         found = more
     if len(found) < 3:
         return SheetFit(found, plane, step, placed.evidence, 1, 0.0, len(nodes), math.inf, 0.0)
+    for _ in range(2):  # the frames' values where their ticks put them, and the ticks' coordinates with them
+        frames = _frames_refined(frames, found, shape, plane)
+        found = _on_frames(found, frames, plane)
     found = trimmed(found, ordered(found, shape))
     found = without_stray_lines(found, ordered(found, shape))
     order = ordered(found, shape)
+    apart = float(np.sqrt(np.mean(np.sum((to_scan(found, order).apply(found[:, 2:4]) - model.apply(found[:, 2:4])) ** 2,
+                                         axis=1))))
     node_px = model.apply(plane.forward(nodes))
-    apart = float(np.max(np.hypot(*(to_scan(found, order).apply(found[:, 2:4]) - model.apply(found[:, 2:4])).T)))
     reachable = _inside(node_px, shape, 0.45 * spacing + radius + 2) & _within(node_px, found[:, :2], 0.25 * spacing)
-    return SheetFit(found, plane, step, placed.evidence, order, spread_of(found[:, :2], shape), int(reachable.sum()),
-                    apart, max(2.0, factor, APART * spacing), lattice_order=placed.lattice.order)
+    ticks_on = sum(len(_tick_points(f, nodes, plane)) for f in frames)
+    return SheetFit(found, plane, step, placed.evidence, order, spread_of(found[:, :2], shape),
+                    int(reachable.sum()) + ticks_on, apart, max(2.0, factor, APART * spacing),
+                    lattice_order=placed.lattice.order)
+
+
+def _tick_points(frame, nodes, plane) -> np.ndarray:
+    """Grid coordinates of each grid line's tick on ``frame`` (a :class:`hamta.core.grid.frame.FrameLine`)."""
+    axis = 1 - frame.axis
+    g = np.empty((len(np.unique(nodes[:, axis])), 2))
+    g[:, axis], g[:, frame.axis] = np.unique(nodes[:, axis]), frame.value
+    return g[np.isfinite(plane.forward(g)).all(axis=1)]
+
+
+def _ticks(source, frames, nodes, model, plane: Plane, step, radius, spacing, check) -> np.ndarray:
+    """Rows (see :func:`_crossings`) of each tick found where a grid line meets a frame line: a short strip along
+    the grid line (:data:`hamta.core.grid.frame.TICK` of a step each side of the frame) crossing a long one along
+    the frame."""
+    from .frame import TICK
+
+    rows = []
+    for k, frame in enumerate(frames):
+        axis = 1 - frame.axis
+        eps = 0.02 * step
+        for g in _tick_points(frame, nodes, plane):
+            check()
+            along_line, along_frame = g.copy(), g.copy()
+            along_line[frame.axis] += eps[frame.axis]
+            along_frame[axis] += eps[axis]
+            pts = plane.forward(np.array([g, along_line, along_frame]))
+            if not np.isfinite(pts).all():
+                continue
+            px = model.apply(pts)
+            tick, edge = px[1] - px[0], px[2] - px[0]
+            tick, edge = tick / (np.hypot(*tick) + 1e-12), edge / (np.hypot(*edge) + 1e-12)
+            one = model.apply(plane.forward(np.array([g, g + np.eye(2)[frame.axis] * step[frame.axis]])))
+            length = TICK * float(np.hypot(*(one[1] - one[0])))
+            got = crossing(source, px[0], [tick, edge], radius, along=(max(length, radius + 2), 0.45 * spacing))
+            if got is not None:
+                rows.append([*got.xy, *pts[0], *g, k, *edge, got.ink])
+    rows = np.array(rows).reshape(-1, 10)
+    inked = rows[:, 9] >= FAINT * np.median(rows[:, 9]) if len(rows) else np.zeros(0, bool)
+    return rows[inked, :9]
+
+
+def _on_frames(found, frames, plane: Plane) -> np.ndarray:
+    """``found`` with each tick's coordinate across its frame (and its plane coordinates) the frame's value."""
+    found = found.copy()
+    for k, frame in enumerate(frames):
+        on = found[:, 6] == k
+        found[on, 4 + frame.axis] = frame.value
+        found[on, 2:4] = plane.forward(found[on, 4:6])
+    return found
+
+
+def _frames_refined(frames, found, shape, plane: Plane):
+    """Each frame line's value where the crossings found put its ticks: the median, over its ticks, of the value
+    across the frame at the tick's scan px, through the model of all crossings."""
+    from .frame import FrameLine
+
+    ticks = found[:, 6] >= 0
+    if not ticks.any() or len(found) < 4:
+        return frames
+    back = to_scan(found[:, [2, 3, 0, 1, 4, 5]], ordered(found, shape))  # scan px -> plane
+    out = []
+    for k, frame in enumerate(frames):
+        on = found[:, 6] == k
+        if on.sum() < 2:
+            out.append(frame)
+            continue
+        g = plane.backward(back.apply(found[on, :2]))
+        out.append(FrameLine(frame.axis, float(np.median(g[:, frame.axis])), frame.strength))
+    return out
 
 
 def _drawn_in(fit: SheetFit, planes) -> SheetFit:
@@ -304,10 +398,11 @@ def _first_model(px, xy) -> LinearModel:
 
 
 def _factor(spacing: float, shape) -> int:
-    """The line map's reduction: a step of at least 24 reduced px, and at most 4000 px on the long side; the
-    finest reduction the scan allows times a power of two (each made of the finest, :func:`_work`)."""
+    """The line map's reduction: a step of at least 24 reduced px, at most 4000 px on the long side and at least
+    256; the finest reduction the scan allows times a power of two (each made of the finest, :func:`_work`)."""
     finest = _finest(shape)
-    return finest * 2 ** int(math.floor(math.log2(max(spacing / (24 * finest), 1.0))))
+    coarsest = max(max(shape) / 256 / finest, 1.0)
+    return finest * 2 ** int(math.floor(math.log2(min(max(spacing / (24 * finest), 1.0), coarsest))))
 
 
 def _finest(shape) -> int:
@@ -350,11 +445,11 @@ def _nodes(model, shape, plane: Plane, step) -> np.ndarray:
 
 def _grid_lines(nodes, step, plane: Plane, per_step: float):
     """(plane points along every grid line through ``nodes`` and one step beyond, ``per_step`` a step; each
-    line's axis: 0 where grid x is constant, 1 where grid y is)."""
+    line's axis: 0 where grid x is constant, 1 where grid y is; each line's grid coordinate)."""
     n = max(int(np.ceil(per_step)), 4)
     step = np.asarray(step, float)
     lo, hi = nodes.min(axis=0) - step, nodes.max(axis=0) + step
-    out, axes = [], []
+    out, axes, values = [], [], []
     for axis in (0, 1):
         along = np.arange(lo[1 - axis], hi[1 - axis] + step[1 - axis] / n / 2, step[1 - axis] / n)
         for value in np.unique(nodes[:, axis]):
@@ -365,7 +460,8 @@ def _grid_lines(nodes, step, plane: Plane, per_step: float):
             if len(xy) >= 2:
                 out.append(xy)
                 axes.append(axis)
-    return out, axes
+                values.append(float(value))
+    return out, axes, values
 
 
 def _steps(model, nodes, plane: Plane, step) -> np.ndarray:

@@ -17,7 +17,8 @@ from ..errors import InputError
 SEXAGESIMAL = (1, 2, 2.5, 3, 4, 5, 6, 7.5, 10, 12, 15, 20, 30)  # whole steps of a degree, minute or second
 DEGREES = (90, 45, 30, 20, 15, 10, 5, 4, 3, 2.5, 2, 1)
 DECIMAL = (1, 2, 2.5, 5)
-FIT = 0.005  # of a step: how far from a multiple of it a printed coordinate may be (44°29' typed 44.48333)
+FIT = 0.005  # of a step: how far from a multiple of it a printed coordinate may be (44°29' typed 44.48333), and at
+TYPED = {True: 1e-4, False: 0.5}  # most this (degrees: 0.36"; linear units): a coordinate typed with its decimals
 
 
 def degree_steps() -> List[float]:
@@ -28,12 +29,12 @@ def degree_steps() -> List[float]:
     return sorted(steps, reverse=True)
 
 
-def linear_steps(largest: float = 1e6, smallest: float = 0.1) -> List[float]:
+def linear_steps(largest: float = 1e6, smallest: float = 1.0) -> List[float]:
     """1, 2, 2.5 and 5 times each power of ten from ``largest`` down to ``smallest`` (CRS units), largest first."""
     out = []
     power = 10.0 ** np.floor(np.log10(largest))
     while power >= smallest:
-        out += [d * power for d in DECIMAL if d * power <= largest]
+        out += [float(d * power) for d in DECIMAL if d * power <= largest]
         power /= 10
     return sorted(set(out), reverse=True)
 
@@ -42,14 +43,14 @@ def usual_steps(geographic: bool) -> List[float]:
     return degree_steps() if geographic else linear_steps()
 
 
-def fitting(coords, steps: Sequence[float]) -> List[float]:
-    """Those of ``steps`` that every coordinate of ``coords`` is a multiple of (within :data:`FIT` of the step),
-    largest first."""
+def fitting(coords, steps: Sequence[float], geographic: bool = True) -> List[float]:
+    """Those of ``steps`` that every coordinate of ``coords`` is a multiple of (within :data:`FIT` of the step and
+    :data:`TYPED`), largest first."""
     coords = np.asarray(coords, float).ravel()
     out = []
     for s in sorted(steps, reverse=True):
-        ratio = coords / s
-        if np.all(np.abs(ratio - np.round(ratio)) <= FIT):
+        off = np.abs(coords - np.round(coords / s) * s)
+        if np.all(off <= min(FIT * s, TYPED[geographic])):
             out.append(float(s))
     return out
 
@@ -58,7 +59,7 @@ def hint_steps(coords, geographic: bool, span: float) -> List[float]:
     """The usual steps the hints' coordinates fit, largest first, down to ``span`` times smaller than the
     largest (hints a few steps apart fit twice the printed step as well as the step). Raises
     :class:`InputError` where none does."""
-    fits = fitting(coords, usual_steps(geographic))
+    fits = fitting(coords, usual_steps(geographic), geographic)
     if not fits:
         raise InputError("The hints' coordinates are not all on one grid of a usual step (degrees, minutes or "
                          "seconds: 1, 2, 2.5, 3, 5, 7.5, 10, 15, 20 or 30 of them; metres, feet or yards: 1, 2, 2.5 "
@@ -69,7 +70,7 @@ def hint_steps(coords, geographic: bool, span: float) -> List[float]:
 def divisors(step: float, geographic: bool, span: float) -> List[float]:
     """The usual steps that divide ``step`` (a step between labelled lines: lines may be printed between
     them), largest first, down to ``span`` times smaller."""
-    return [s for s in fitting([step], usual_steps(geographic)) if s >= step / span]
+    return [s for s in fitting([step], usual_steps(geographic), geographic) if s >= step / span]
 
 
 def describe_pair(step, geographic: bool) -> str:

@@ -99,6 +99,10 @@ def _verification_section(result, ref: Preview, scale: Optional[MapScale] = None
     v = result.verification
     if v is None:
         return "<h2>4. Independent check</h2><p>Not run.</p>"
+    if v.check == "grid-held-out-lines":
+        from .grid_check import grid_check_section
+
+        return grid_check_section(result, ref, scale)
     other = int(v.n_sites - np.count_nonzero(v.agree | v.contradict))
     legend = (f"{_swatch(AGREE_BGR, '□', f'{v.n_agree} line up')} · "
               f"{_swatch(CONTRADICT_BGR, '□', f'{v.n_contradict} match better elsewhere')} · "

@@ -38,7 +38,7 @@ from ..coords import as_xy, compose, raster_outline
 from ..errors import OutputError
 from ..estimation.models import local_jacobian
 from ..io.raster import numpy_dtype, placeholder_crs
-from ..options import FORMAT, GRID, RESAMPLING, OutputOptions
+from ..options import FORMAT, PIXEL_GRID, RESAMPLING, OutputOptions
 from ..parallel import THREADS
 from ..progress import Monitor
 from .model_vrt import scratch_dir, write_model_vrt
@@ -83,7 +83,7 @@ def check_output_options(output: OutputOptions, target, path: str) -> None:
     ``path``, and a nodata value fits its pixel type (the target's, ``target`` a
     :class:`~hamta.core.io.raster.RasterInfo`). Raises ``ValueError`` naming the option."""
     fmt = output_format(path, output.format)
-    if output.grid == "target" and (fmt == "vrt" or output.crs is not None or output.resolution is not None):
+    if output.pixel_grid == "target" and (fmt == "vrt" or output.crs is not None or output.resolution is not None):
         raise ValueError("the output grid 'target' keeps the target's pixels in the reference CRS: it takes no "
                          "output CRS or resolution, and is written as GeoTIFF or COG, not VRT")
     if output.creation_options and fmt == "vrt":
@@ -161,7 +161,7 @@ def output_grid(result, grid: str = "auto", resolution: Optional[float] = None, 
     In another ``crs`` the same pixel size is carried over at the centre and the grid is aligned to
     multiples of it. In pixel mode the output is the reference pixel grid itself.
     """
-    GRID.check(grid)
+    PIXEL_GRID.check(grid)
     ref = result.reference
     if result.pixel_mode:
         if crs is not None:
@@ -213,11 +213,11 @@ def write_warped(path: str, result, output: OutputOptions = OutputOptions(), mon
     :func:`output_format` picks; returns that format."""
     monitor = monitor or Monitor()
     fmt = output_format(path, output.format)
-    if output.grid == "target":
+    if output.pixel_grid == "target":
         write_moved(path, result, _creation(COG_OPTIONS if fmt == "cog" else GTIFF_OPTIONS, output), fmt == "cog",
                     monitor)
         return fmt
-    transform, width, height, crs = output_grid(result, output.grid, output.resolution, output.crs)
+    transform, width, height, crs = output_grid(result, output.pixel_grid, output.resolution, output.crs)
     warp_crs = crs or placeholder_crs()
     with scratch_dir(scratch) as tmp:
         vrt = os.path.join(tmp, f"model-{os.getpid()}.vrt")

@@ -149,6 +149,10 @@ class Verification:
     def verified(self) -> bool:
         return self.verdict == "verified"
 
+    def summary(self) -> str:
+        """The check's evidence in a few words (what the front ends print beside the verdict)."""
+        return f"{self.n_agree} of {self.n_sites} sites agree"
+
     def to_dict(self) -> dict:
         """The ``quality`` section of ``report.json`` (see docs/report.md)."""
         def num(v):

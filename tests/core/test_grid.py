@@ -1,19 +1,23 @@
-"""The sheet's own grid (issue 56, first round: the core, not yet a method): printed crossings found to a
-fraction of a pixel from a few hints on a synthetic sheet whose truth is exact."""
+"""The sheet's own grid, its parts: crossings to a fraction of a pixel, the lattice judged against the sheet's
+own background, the steps a grid may have, the plane a graticule is drawn in, the check's model and verdict."""
 import math
 
 import numpy as np
 import pytest
+from pyproj import CRS
 
 from hamta.core.errors import InputError
+from hamta.core.grid.check import judge
 from hamta.core.grid.lines import crossing
 from hamta.core.grid.scan import LineSource
-from hamta.core.grid.sheet import fit_sheet, grid_steps
+from hamta.core.grid.sheet import NoGridFound, fit_sheet
+from hamta.core.grid.steps import degree_steps, describe, describe_pair, hint_steps, linear_steps
 
 STEP_M = 1000.0
+UTM = CRS.from_user_input("EPSG:32633")
 
 
-def _sheet(angle_deg=12.0, spacing_px=80.0, size=(700, 900), seed=0):
+def _sheet(angle_deg=12.0, spacing_px=80.0, size=(700, 900), seed=0, grid=True):
     """A scan of a 1 km grid turned ``angle_deg``: thin dark lines on paper, map lines drawn across it, noise
     and JPEG. Returns the grey image and the truth: grid coordinates (metres) -> scan px."""
     import cv2
@@ -29,7 +33,7 @@ def _sheet(angle_deg=12.0, spacing_px=80.0, size=(700, 900), seed=0):
         return xy @ rot.T + origin
 
     image = np.full((h * 4, w * 4), 235, np.uint8)
-    for i in range(-8, 9):
+    for i in range(-8, 9) if grid else ():
         for axis in (0, 1):
             ends = np.array([[500000.0 + i * STEP_M, 6000000.0 - 9 * STEP_M], [500000.0 + i * STEP_M,
                                                                                6000000.0 + 9 * STEP_M]])
@@ -47,6 +51,12 @@ def _sheet(angle_deg=12.0, spacing_px=80.0, size=(700, 900), seed=0):
     return cv2.imdecode(jpeg, cv2.IMREAD_GRAYSCALE), to_px
 
 
+def _hints(to_px, grid, seed=1, noise=4.0):
+    rng = np.random.default_rng(seed)
+    grid = np.asarray(grid, float)
+    return np.column_stack([to_px(grid) + rng.uniform(-noise, noise, (len(grid), 2)), grid])
+
+
 def test_a_crossing_is_found_to_a_fraction_of_a_pixel_from_a_point_near_it():
     grey, to_px = _sheet()
     node = np.array([501000.0, 6001000.0])
@@ -61,21 +71,75 @@ def test_a_crossing_is_found_to_a_fraction_of_a_pixel_from_a_point_near_it():
 @pytest.mark.parametrize("hints", [3, 2])
 def test_hints_placed_roughly_find_every_crossing_of_the_sheet(hints):
     grey, to_px = _sheet()
-    rng = np.random.default_rng(1)
-    grid = np.array([[499000.0, 6001000.0], [502000.0, 5999000.0], [500000.0, 5998000.0]])[:hints]
-    rows = np.column_stack([to_px(grid) + rng.uniform(-4, 4, (hints, 2)), grid])
-    fit = fit_sheet(grey, rows, "EPSG:32633")
-    errors = np.hypot(*(fit.gcps[:, :2] - to_px(fit.gcps[:, 4:6])).T)
-    assert len(fit.gcps) >= 40 and np.median(errors) < 0.3 and errors.max() < 1.0, (len(fit.gcps), errors.max())
-    assert fit.verified and fit.step == STEP_M and fit.loo_px < 0.5, fit.notes
+    grid = [[499000.0, 6001000.0], [502000.0, 5999000.0], [500000.0, 5998000.0]][:hints]
+    fit = fit_sheet(grey, _hints(to_px, grid), UTM)
+    errors = np.hypot(*(fit.crossings[:, :2] - to_px(fit.crossings[:, 4:6])).T)
+    assert len(fit.crossings) >= 40 and np.median(errors) < 0.3 and errors.max() < 1.0, (len(fit.crossings),
+                                                                                         errors.max())
+    assert tuple(fit.step) == (STEP_M, STEP_M) and fit.evidence.printed
+    frame_px = (fit.crossings[:, 4:6] - [490000.0, 6010000.0]) * [0.08, -0.08]  # a frame of 12.5 m px
+    kind, check = judge(fit, frame_px, 1.0, None, 2.0, None, 0.0)
+    assert check.verified and check.held_out_scan_px < 0.5 and kind == "affine", (kind, check.reasons)
 
 
-def test_the_grid_steps_are_the_usual_steps_the_hints_fit_largest_first_and_a_stray_one_is_refused():
-    assert grid_steps(np.array([[150.0, -30.0], [152.0, -33.0]]), (10, 5, 2, 1, 0.5)) == [1, 0.5]
-    assert grid_steps(np.array([[502000.0, 6000000.0], [504000.0, 6004000.0]]), (10000, 5000, 2000, 1000)) == [2000,
-                                                                                                             1000]
+def test_a_sheet_without_a_grid_is_refused_naming_the_lattices_tried():
+    grey, to_px = _sheet(grid=False)
+    with pytest.raises(NoGridFound, match="No printed grid was found") as caught:
+        fit_sheet(grey, _hints(to_px, [[499000.0, 6001000.0], [502000.0, 5999000.0]]), UTM)
+    assert caught.value.tried and all(not a.evidence.printed for a in caught.value.tried if a.evidence)
+
+
+def test_a_hint_typed_one_step_off_is_named():
+    grey, to_px = _sheet()
+    rows = _hints(to_px, [[499000.0, 6001000.0], [502000.0, 5999000.0], [500000.0, 5998000.0]])
+    rows[2, 2] += STEP_M
+    with pytest.raises(InputError, match="hint 3|No printed grid|too few to place the sheet"):
+        fit_sheet(grey, rows, UTM)
+
+
+def test_the_steps_are_the_usual_ones_in_any_unit_largest_first_and_a_stray_one_is_refused():
+    assert hint_steps(np.array([150.0, 152.0]), True, 10)[:3] == [2.0, 1.0, 0.5]
+    assert hint_steps(np.array([-156.99583333, -156.99166667]), True, 10)[0] == pytest.approx(15 / 3600)
+    assert hint_steps(np.array([502000.0, 504000.0]), False, 10) == [2000.0, 1000.0, 500.0, 250.0, 200.0]
+    assert 9144.0 not in linear_steps() and 10000.0 in linear_steps()  # 10 000 yards: in a CRS counting yards
+    assert 7.5 / 60 in degree_steps() and 0.5 / 60 in degree_steps()
     with pytest.raises(InputError, match="usual step"):
-        grid_steps(np.array([[501234.5, 6000000.0]]), (10000, 5000, 2000, 1000, 500, 200, 100))
+        hint_steps(np.array([501234.5]), False, 10)
+    assert describe(2 / 60, True) == "2'" and describe(15 / 3600, True) == '15"' and describe(5, True) == "5°"
+    assert describe_pair((0.5, 1.0), True) == "30' x 1°" and describe_pair((1000, 1000), False) == "1000"
+
+
+def test_a_graticule_is_found_drawn_in_the_projection_it_was_drawn_in():
+    """Degrees of a Lambert conic chart: its meridians converge; a plane that converges them (a cone, or the
+    transverse Mercator and polyconic planes, alike over a sheet) fits them straight, Mercator does not."""
+    import cv2
+    from pyproj import Transformer
+
+    lcc = "+proj=lcc +lat_1=47.5 +lat_2=49.5 +lat_0=48.5 +lon_0=-92 +ellps=GRS80"
+    to_lcc = Transformer.from_crs("EPSG:4269", lcc, always_xy=True)
+    scale = 1 / 120.0  # metres of the plane per scan px
+    h, w = 1300, 1400
+    centre = np.array(to_lcc.transform(-92.0, 48.5))
+
+    def to_px(g):
+        x, y = to_lcc.transform(*np.atleast_2d(g).T)
+        x, y = (np.asarray(x) - centre[0]) * scale + w / 2, (centre[1] - np.asarray(y)) * scale + h / 2
+        return np.column_stack([x, y])
+
+    big = np.full((h * 2, w * 2), 235, np.uint8)
+    for v in np.arange(-95.0, -88.9, 0.5):
+        t = np.linspace(46.0, 51.0, 200)
+        cv2.polylines(big, [np.round(to_px(np.column_stack([np.full_like(t, v), t])) * 2).astype(np.int32)], False,
+                      60, 3, cv2.LINE_AA)
+    for v in np.arange(46.0, 51.1, 0.5):
+        t = np.linspace(-95.0, -89.0, 200)
+        cv2.polylines(big, [np.round(to_px(np.column_stack([t, np.full_like(t, v)])) * 2).astype(np.int32)], False,
+                      60, 3, cv2.LINE_AA)
+    grey = cv2.resize(big, (w, h), interpolation=cv2.INTER_AREA)
+    grid = np.array([[-93.0, 49.0], [-91.0, 48.0]])
+    fit = fit_sheet(grey, np.column_stack([to_px(grid), grid]), CRS.from_user_input("EPSG:4269"))
+    assert fit.plane.name != "Mercator" and fit.plane_fits[fit.plane.name] < 1.0, fit.plane_fits
+    assert fit.plane_fits["Mercator"] > 3 * fit.plane_fits["Lambert conformal conic"]
 
 
 def test_a_grid_line_shifted_as_a_whole_is_left_out_and_the_others_kept():
@@ -87,6 +151,6 @@ def test_a_grid_line_shifted_as_a_whole_is_left_out_and_the_others_kept():
     grid = np.column_stack([gx.ravel(), gy.ravel()])
     scan = grid @ np.array([[0.2, 0.01], [-0.01, -0.2]]) + [100.0, 1500.0]
     scan[grid[:, 0] == 3000.0] += [6.0, 0.0]
-    found = np.column_stack([scan, grid, grid])  # scan x, y, crs x, y, grid x, y
+    found = np.column_stack([scan, grid, grid])  # scan x, y, plane x, y, grid x, y
     kept = without_stray_lines(found, 1)
     assert len(kept) == len(found) - 7 and not (kept[:, 4] == 3000.0).any()

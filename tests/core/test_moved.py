@@ -51,4 +51,4 @@ def test_the_grid_target_takes_no_output_crs():
     from hamta.core.outputs.warp import check_output_options
 
     with pytest.raises(ValueError, match="no output CRS"):
-        check_output_options(OutputOptions(grid="target", crs="EPSG:4326"), None, "out.tif")
+        check_output_options(OutputOptions(pixel_grid="target", crs="EPSG:4326"), None, "out.tif")

@@ -111,12 +111,12 @@ def test_every_method_algorithm_is_listed(provider):
 
 
 def test_parameter_mapping_is_pure():
-    options, paths, output = register_settings({"MODEL": 5, "RESAMPLING": 2, "GRID": 1, "REFINE": 2,
+    options, paths, output = register_settings({"MODEL": 5, "RESAMPLING": 2, "PIXEL_GRID": 1, "REFINE": 2,
                                                 "TARGET_BAND": 0, "REFERENCE_BAND": 2, "SEED": 3,
                                                 "OUTPUT": "/x/o.tif", "GCP_POINTS": ""})
     assert options.model == "tps" and options.refine == "off" and options.seed == 3
     assert options.target_band is None and options.reference_band == 2
-    assert output.resampling == "cubic" and output.grid == "reference"
+    assert output.resampling == "cubic" and output.pixel_grid == "reference"
     assert paths.raster == "/x/o.tif" and paths.points is None
     options, _, output = register_settings({"TOLERANCE": 0, "RANSAC_THRESHOLD": 0.0, "RESOLUTION": 0})
     assert options.tolerance_px == 3.0 and options.ransac_threshold_px is None and output.resolution is None
