@@ -27,10 +27,11 @@ from .crossings import lines_held_out
 from .sheet import SheetFit
 from .steps import describe_pair
 
-KINDS = (("affine", 6, 0.0), ("polynomial-2", 12, 0.5), ("polynomial-3", 30, 0.8), ("tps", 12, 0.5))  # the
-# sheet's models, simplest first: the crossings each needs, and the share of the sheet they must cover (a polynomial
-# or a spline bends wildly beyond them); a similarity where there are too few for an affine (a scanner's two axes
-# differ in scale by a few tenths of a per cent: a similarity leaves pixels of it at a large sheet's corners)
+KINDS = (("affine", 6, 3, 0.0), ("polynomial-2", 12, 4, 0.5), ("polynomial-3", 30, 5, 0.8), ("tps", 12, 4, 0.5))
+# the sheet's models, simplest first: the crossings each needs, the lines each way (one held out, the others
+# must fix the model's terms along that way), and the share of the sheet they must cover (a polynomial or a spline
+# bends wildly beyond them); a similarity where there are too few for an affine (a scanner's two axes differ in
+# scale by a few tenths of a per cent: a similarity leaves pixels of it at a large sheet's corners)
 BETTER = 0.9  # a model after the simplest is taken when its lines held out are this much closer, and by at least
 GAIN_PX = 0.25  # this many scan px (less is within the crossings' own scatter: 0.1-0.3 px on the synthetic sheets)
 MIN_CROSSINGS = 4  # a verified sheet needs this many crossings: two lines each way, each held out in turn
@@ -142,7 +143,9 @@ def choose_model(asked: Optional[str], fit: SheetFit, scan_px, frame_px, scale: 
     """(kind, (n, 2) frame px error of each crossing predicted without its grid line, {kind: held-out RMS frame
     px}) of the model ``asked``, else of the simplest the check finds best (:data:`KINDS`, :data:`BETTER`,
     :data:`GAIN_PX`; ``scale``: frame px per scan px)."""
-    kinds = [asked] if asked else [k for k, least, cover in KINDS if len(scan_px) >= least and fit.spread >= cover]
+    lines = min(len(np.unique(fit.crossings[:, 4 + a])) for a in (0, 1))
+    kinds = [asked] if asked else [k for k, least, each, cover in KINDS
+                                   if len(scan_px) >= least and lines >= each and fit.spread >= cover]
     best, table = None, {}
     for kind in kinds or ["similarity"]:  # a similarity: from two crossings on each of two lines
         errors = along_frames(held_out_errors(kind, scan_px, frame_px, fit.crossings[:, 4:6]), fit.crossings,

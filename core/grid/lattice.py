@@ -164,10 +164,10 @@ class _Snapper:
         counts = np.diff(np.r_[self.starts, len(self.seg)])
         profile = np.add.reduceat(values, self.starts, axis=1) / counts  # (k offsets, segments)
         on = np.isfinite(profile).all(axis=0)
-        i = np.argmax(np.where(np.isfinite(profile), profile, -np.inf), axis=0)
-        base = np.nanmedian(np.where(np.isfinite(profile), profile, np.nan), axis=0) if on.any() else \
-            np.zeros(profile.shape[1])
-        spread = np.nanmedian(np.abs(profile - base), axis=0) * 1.4826 + 1e-9
+        profile = np.where(on[None, :], profile, 0.0)  # a segment leaving the sheet is not looked at
+        i = np.argmax(profile, axis=0)
+        base = np.median(profile, axis=0)
+        spread = np.median(np.abs(profile - base), axis=0) * 1.4826 + 1e-9
         cols = np.arange(profile.shape[1])
         peak = profile[i, cols]
         ok = on & (i > 0) & (i < k - 1) & ((peak - base) / spread >= PEAK)
@@ -205,13 +205,21 @@ class _Snapper:
 PEAK = 3.0  # robust deviations above its median a segment's profile must peak to place its line (a line shows)
 
 
-OFF_LATTICE = np.linspace(0.15, 0.85, 15)  # of a step: where each line is moved to see what the sheet's content
-# alone puts along it (beyond the printed line's width on a line map reduced to 24 px a step)
-LEAST_COPIES = 8  # copies of a line on the sheet it is judged against (a step wider than the sheet leaves fewer)
-P_CHANCE = 0.15  # the share of lines of a lattice fitted where no grid is printed that stand above all their
-# moved copies (calibrated: tools/calibrate_grid.py, on imagery and maps without a grid; see docs/benchmarks.md)
-CHANCE = 1e-4  # the probability by chance of as many lines standing out, in both families together, below which a
-# lattice is printed (tools/calibrate_grid.py)
+OFF_LATTICE = np.array(sorted({k / n for n in (2, 3, 4, 5, 6) for k in range(1, n)}))  # of a step: where each
+# line is moved to see what the sheet's content alone puts along it: where the lines of a grid printed at a half,
+# third ... sixth of the lattice's step would be (the ratios between usual steps), so that a lattice at a multiple
+# of the printed step finds its copies on printed lines
+Z_LINE = 4.0  # robust deviations of its copies a line's ink must stand above them, besides above them all
+# (tools/calibrate_grid.py: where no grid is printed, a lattice fitted to the content has lines above all their
+# copies often, this far above them seldom)
+LEAST_COPIES = 6  # copies of a line on the sheet it is judged against (a step wider than the sheet leaves fewer)
+P_CHANCE = 0.19  # the mean share of a family's lines that stand out (Z_LINE) where no grid is printed, on lattices
+# fitted to imagery, maps and sheets without a grid (tools/calibrate_grid.py; docs/benchmarks.md)
+CHANCE = 1e-2  # the probability by chance of as many lines standing out, both families together, below which a
+# lattice is taken for printed. A lattice's crossings then decide (hamta.core.grid.check.MIN_SHARE: a lattice where
+# none is printed finds at most 13 % of its crossings, tools/calibrate_grid.py)
+PRINTED_SHARE = 0.4  # the 95th percentile of a family's share of lines standing out where no grid is printed
+# (tools/calibrate_grid.py)
 FAMILY_CHANCE = CHANCE ** 0.5  # a family alone: half the evidence both together need (in log10)
 COPY_SHARE = 0.5  # a lattice whose lines moved by part of a step keep half its ink above the background is not at
 # the printed step (a lattice at twice the step finds as much ink half a step over)
@@ -231,11 +239,21 @@ class Family:
     excess: float
     copy_share: float
     chance: float
+    alternate: bool = False  # every other line printed, the others not: the lattice is at half the printed step
 
     @property
     def stands(self) -> bool:
         """The family alone stands out from the background (:data:`FAMILY_CHANCE`) and is at its printed step."""
         return self.chance <= FAMILY_CHANCE and self.copy_share < COPY_SHARE
+
+    @property
+    def at_step(self) -> bool:
+        """The family may be at the printed step: its copies moved by part of a step find no printed lines, its
+        lines are not printed every other one, and more of them are printed than lattices where no grid is printed
+        show but one time in twenty (:data:`PRINTED_SHARE`), or as many as chance seldom gives (a smaller step is
+        tried otherwise)."""
+        return self.copy_share < COPY_SHARE and not self.alternate and self.printed >= 1 and \
+            (self.printed >= PRINTED_SHARE * self.lines or self.chance <= FAMILY_CHANCE)
 
     def to_dict(self) -> dict:
         return {"axis": "x" if self.axis == 0 else "y", "lines": self.lines, "printed": self.printed,
@@ -249,6 +267,7 @@ class Evidence:
     keeps its ink moved by part of a step (:data:`COPY_SHARE`)."""
 
     families: Tuple[Family, Family]
+    threshold: float = CHANCE  # the chance below which it is printed (CHANCE shared by the lattices a search tries)
 
     @property
     def chance(self) -> float:
@@ -256,7 +275,7 @@ class Evidence:
 
     @property
     def printed(self) -> bool:
-        return self.chance <= CHANCE and all(f.copy_share < COPY_SHARE and f.printed >= 1 for f in self.families)
+        return self.chance <= self.threshold and all(f.at_step for f in self.families)
 
     @property
     def score(self) -> float:
@@ -274,7 +293,7 @@ class Evidence:
                 f"from the sheet's background (chance {self.chance:.0e})")
 
     def to_dict(self) -> dict:
-        return {"printed": self.printed, "chance_probability": self.chance,
+        return {"printed": self.printed, "chance_probability": self.chance, "threshold": self.threshold,
                 "families": [f.to_dict() for f in self.families]}
 
 
@@ -304,10 +323,12 @@ def evidence(work: np.ndarray, factor: int, lines, axes, lattice: Lattice, steps
             np.isfinite(ahead), ahead, [ink(px - f * steps[axis]) for f in OFF_LATTICE])
         if np.isfinite(copies).sum() < LEAST_COPIES:
             return None
-        return value, copies, bool(value > np.nanmax(copies))
+        middle = float(np.nanmedian(copies))
+        spread = 1.4826 * float(np.nanmedian(np.abs(copies - middle))) + 1e-6 * (abs(middle) + 1e-6)
+        return value, copies, bool(value > np.nanmax(copies) and (value - middle) / spread >= Z_LINE)
 
     for axis in (0, 1):
-        here, moved, printed, whole = [], [], 0, []
+        here, moved, printed, whole, flags = [], [], 0, [], []
         for k, (line, a) in enumerate(zip(lines, axes)):
             if a != axis:
                 continue
@@ -322,26 +343,35 @@ def evidence(work: np.ndarray, factor: int, lines, axes, lattice: Lattice, steps
                 tick = stands(lattice.model.apply(xy), axis)
                 alone |= tick is not None and tick[2]
             printed += bool(alone)
+            flags.append(bool(alone))
         if not here:
             return None
         here, moved, whole = np.array(here), np.array(moved), np.array(whole)
         background = float(np.nanmedian(moved))
         families.append(Family(axis, len(here), printed, float(here.mean()) / max(background, 1e-12),
-                               _copy_share(here[whole], moved[whole]),
-                               float(binom.sf(printed - 1, len(here), P_CHANCE))))
+                               _copy_share(here, moved) if whole.any() else 0.0,
+                               float(binom.sf(printed - 1, len(here), P_CHANCE)), _alternate(flags)))
     return Evidence(tuple(families))
 
 
+def _alternate(flags) -> bool:
+    """Whether the lines (in order) are printed every other one: one parity two thirds printed or more, the other a
+    third or less, over four lines or more."""
+    flags = np.asarray(flags, bool)
+    if len(flags) < 4:
+        return False
+    even, odd = flags[0::2].mean(), flags[1::2].mean()
+    return bool(max(even, odd) >= 2 / 3 and min(even, odd) <= 1 / 3)
+
+
 def _copy_share(here, moved) -> float:
-    """Of the lines printed whole, the ink their strongest copy moved by part of a step keeps above the copies'
-    median, as a share of theirs (0 without such lines: ticks alone, whose copies find other ticks and so do not
-    stand out)."""
-    if not len(here):
-        return 0.0
+    """The ink a family's strongest copy moved by part of a step keeps above the copies' median, as a share of the
+    family's (a family of ticks alone, no line printed whole, has none: its copies find other ticks, and so its
+    lines do not stand out of them)."""
     with np.errstate(all="ignore"):
-        by_move = np.nanmean(moved, axis=0)  # each move's copies, over the lines (NaN: off the sheet both ways)
-    background = float(np.nanmedian(by_move))
-    above = float(here.mean()) - background
+        by_move = np.nanmedian(moved, axis=0)  # each move's copies, over the lines (NaN: off the sheet both ways; the
+    background = float(np.nanmedian(by_move))  # median: one copy that meets the neatline does not count)
+    above = float(np.median(here)) - background
     copy = float(np.nanmax(by_move)) - background
     return copy / above if above > 0 else math.inf
 

@@ -16,6 +16,7 @@ the plane).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import List, Optional, Sequence
@@ -26,7 +27,7 @@ from ..errors import InputError
 from ..estimation.models import LinearModel
 from .crossings import ordered, spread_of, to_scan, trimmed, without_stray_lines
 from .frame import find_frames, node_pieces, tick_pieces
-from .lattice import Evidence, _ink, evidence, fit_lattice
+from .lattice import CHANCE, Evidence, _ink, evidence, fit_lattice
 from .lines import crossing
 from .planes import Plane, planes_for
 from .scan import LineSource
@@ -34,11 +35,12 @@ from .steps import describe_pair, hint_steps
 
 HINT_PX = 0.15  # of the grid's spacing: how far from a crossing a hint may be placed
 MAX_CROSSINGS = 4000
-MIN_STEP_PX = 12.0  # a printed grid's crossings are at least this far apart on a scan
+MIN_STEP_PX = 24.0  # a printed grid's crossings are at least this far apart on a scan (its evidence is judged on a
+# line map with 24 px a step at least)
 APART = 0.1  # of a step: how far the crossings' model may lie from the lattice of whole lines (placed on a line
 # map reduced by up to a tenth of a step, and only affine or quadratic)
-STEPS_SPAN = 10  # the steps the hints fit that are tried: down to a tenth of the largest (hints on crossings ten
-# steps apart at most)
+STEPS_SPAN = 1e6  # the steps the hints fit that are tried: all, largest first, until their crossings are too close
+# (hints on one line leave its step open)
 LOCAL_SHARE = 0.04  # of a step: how far from the lattice's place a crossing is looked for
 PASSES = 3  # times the crossings are looked for again where those found put them
 FAINT = 0.3  # of the median crossing's ink: fainter crossings are noise (off the paper, a gap in the lines)
@@ -129,12 +131,13 @@ def fit_sheet(scan, hints: Sequence, sheet_crs, steps=None, drawn_in=None, progr
         # most of the printed lines is kept
         monitor.report(0.6 * k / len(planes), f"grid: the lattice in {plane.name}")
         found = _printed(source, works, plane, hints, steps if best is None else [[s] for s in best[1].step],
-                         tried, geographic)
+                         tried, geographic, CHANCE)
         if found is not None and (best is None or found.lattice.straight > best[1].lattice.straight):
             best = (plane, found)
     if best is None:
         raise NoGridFound(_not_found(tried, geographic), tried, geographic)
-    best = (best[0], _lattice(source, works, best[0], hints, best[1].step, bend=True) or best[1])
+    best = (best[0], _lattice(source, works, best[0], hints, best[1].step, bend=True,
+                              threshold=best[1].evidence.threshold) or best[1])
     plane, lat = best
     monitor.report(0.6, "grid: each crossing")
     fit = _crossings(source, plane, lat, monitor)
@@ -153,27 +156,63 @@ def fit_sheet(scan, hints: Sequence, sheet_crs, steps=None, drawn_in=None, progr
     return fit
 
 
-def _printed(source, works, plane: Plane, hints, steps, tried, geographic: bool) -> Optional["_Placed"]:
-    """The lattice in ``plane`` at the largest steps of ``steps`` (a list for each axis) whose lines are printed: a
-    family whose lines are not is tried at its next smaller step; None where no lattice is. Each lattice placed
-    is added to ``tried``."""
+def _printed(source, works, plane: Plane, hints, steps, tried, geographic: bool, threshold: float
+             ) -> Optional["_Placed"]:
+    """The lattice in ``plane`` at the largest steps of ``steps`` (a list for each axis) whose lines are printed
+    (beyond ``threshold``: the lattices a search may try share :data:`hamta.core.grid.lattice.CHANCE`): a family
+    whose lines are not is tried at its next smaller step; None where no lattice is. Each lattice placed is added
+    to ``tried``."""
     ix, iy = 0, 0
     while ix < len(steps[0]) and iy < len(steps[1]):
         step = (steps[0][ix], steps[1][iy])
-        found = _lattice(source, works, plane, hints, step)
+        found = _lattice(source, works, plane, hints, step, threshold=threshold)
         tried.append(Attempt(plane.name, step, None if found is None else found.evidence,
                              math.nan if found is None else found.spacing,
                              math.nan if found is None else found.lattice.straight))
-        if found is None:  # too few of its lines on the sheet, or its crossings too close: the next smaller steps
+        if found is None:  # a step wider than the sheet can judge, or one whose crossings are closer than printed:
+            if _too_fine(source, plane, hints, step):  # none smaller is printed
+                return None
             ix, iy = ix + 1, iy + 1
             continue
         if found.evidence.printed:
-            return found
-        fx, fy = (family.stands for family in found.evidence.families)
+            return _equal_steps(source, works, plane, hints, steps, found, tried, threshold)
+        fx, fy = (family.at_step for family in found.evidence.families)
         if fx and fy:
-            return None  # each family stands alone, but not both together
+            return None  # each family at its step, but not both together beyond chance: no grid of these steps
+        if not fx and not fy:  # the coarser family first: a lattice wrong one way misplaces the other's lines too
+            coarser = int(np.argmax(np.hypot(*found.steps_px.T)))
+            fx, fy = coarser == 1, coarser == 0
         ix, iy = ix + (not fx), iy + (not fy)
     return None
+
+
+def _equal_steps(source, works, plane, hints, steps, found, tried, threshold):
+    """``found``, or the lattice with both steps the larger of its two where that is printed too (a family at
+    half its printed step still finds every printed line: the larger step is the grid's)."""
+    sx, sy = found.step
+    if sx == sy:
+        return found
+    both = max(sx, sy)
+    if both not in steps[0] or both not in steps[1]:
+        return found
+    again = _lattice(source, works, plane, hints, (both, both), threshold=threshold)
+    tried.append(Attempt(plane.name, (both, both), None if again is None else again.evidence,
+                         math.nan if again is None else again.spacing,
+                         math.nan if again is None else again.lattice.straight))
+    return again if again is not None and again.evidence.printed else found
+
+
+def _too_fine(source, plane: Plane, hints, step) -> bool:
+    """Whether a lattice of ``step`` would put crossings closer than :data:`MIN_STEP_PX` (or too many)."""
+    hint_xy = plane.forward(hints[:, 2:])
+    if not np.isfinite(hint_xy).all():
+        return True
+    start = _first_model(hints[:, :2], hint_xy)
+    try:
+        nodes = _nodes(start, source.shape, plane, step)
+    except InputError:
+        return True
+    return not _spacing(start, nodes, plane, step) >= MIN_STEP_PX
 
 
 @dataclass(frozen=True)
@@ -188,9 +227,11 @@ class _Placed:
     factor: int
     step: tuple
     frames: tuple = ()
+    steps_px: np.ndarray = None  # scan px of one step along grid x and along grid y
 
 
-def _lattice(source, works, plane: Plane, hints, step, bend: bool = False) -> Optional[_Placed]:
+def _lattice(source, works, plane: Plane, hints, step, bend: bool = False, threshold: float = CHANCE
+             ) -> Optional[_Placed]:
     """The lattice of ``step`` (along grid x, along grid y) in ``plane`` from the hints' first model (``bend``:
     second-order where that finds more ink), or None where its crossings would be too close or too many to be a
     printed grid. ``works``: the reduced line maps computed so far, by reduction."""
@@ -217,7 +258,8 @@ def _lattice(source, works, plane: Plane, hints, step, bend: bool = False) -> Op
                      node_pieces(nodes, step, plane) + tick_pieces(frames, nodes, step, plane))
     if found is None:
         return None
-    return _Placed(nodes, lattice, found, float(min(np.hypot(*steps.T))), factor, tuple(step), tuple(frames))
+    found = dataclasses.replace(found, threshold=threshold)
+    return _Placed(nodes, lattice, found, float(min(np.hypot(*steps.T))), factor, tuple(step), tuple(frames), steps)
 
 
 def _crossings(source, plane: Plane, placed: _Placed, monitor) -> SheetFit:
