@@ -12,6 +12,10 @@ export PIP_DISABLE_PIP_VERSION_CHECK := 1
 # The PyPI-wheels half has the 'learned' extra (its tests run there): torch's CPU build where this machine's
 # pip finds one (PyPI's own torch for Linux is a CUDA build of several GB); TORCH=... chooses another.
 TORCH ?= torch==2.13.0
+# RapidOCR, the second engine that reads a sheet's labels (its models ship in its wheel): installed without its
+# dependencies, which name opencv-python, a second OpenCV over opencv-python-headless; its others are listed.
+RAPIDOCR := rapidocr_onnxruntime==1.4.4
+RAPIDOCR_DEPS := onnxruntime pyclipper pyyaml six tqdm
 
 .PHONY: demo test lint test-wheels test-debian sysdeps i18n bench fuzz package clean
 
@@ -20,7 +24,7 @@ demo: $(VENV)/.ok
 
 # The two halves run side by side (each keeps about one of two cores busy); each one's output is
 # printed whole when it ends. HAMTA_TEST_HALF shares the cases of tests marked 'split' between them.
-test: $(VENV)/.learned $(QVENV)/.ok
+test: $(VENV)/.learned $(VENV)/.ocr $(QVENV)/.ok
 	$(MAKE) --no-print-directory lint
 	$(MAKE) --no-print-directory -j2 --output-sync=target test-wheels test-debian
 
@@ -28,8 +32,8 @@ lint: $(VENV)/.ok
 	$(VENV)/bin/ruff check .
 
 # Core suite on current PyPI wheels (numpy 2, OpenCV 5, shapely 2, rasterio with its own GDAL) and the
-# 'learned' extra.
-test-wheels: $(VENV)/.learned
+# 'learned' extra; the labels read by Tesseract (Debian's) and RapidOCR.
+test-wheels: $(VENV)/.learned $(VENV)/.ocr
 	HAMTA_TEST_HALF=0 $(VENV)/bin/python -P -m pytest tests/core -q -rs --durations=15
 
 # Core and QGIS suites on Debian's packages, in the interpreter QGIS embeds (numpy 1.24, OpenCV 4.6, ...);
@@ -73,6 +77,11 @@ $(VENV)/.ok: pyproject.toml
 $(VENV)/.learned: $(VENV)/.ok
 	$(VENV)/bin/pip install -q '$(TORCH)'
 	$(VENV)/bin/pip install -q -e '.[test,learned]'
+	touch $@
+
+$(VENV)/.ocr: $(VENV)/.ok
+	$(VENV)/bin/pip install -q $(RAPIDOCR_DEPS)
+	$(VENV)/bin/pip install -q --no-deps $(RAPIDOCR)
 	touch $@
 
 sysdeps:

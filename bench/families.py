@@ -29,7 +29,8 @@ from .synthetic import make_landscape
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
             "should-fail", "collar") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch",
                                                                           "basemap", "basemap-real", "speed",
-                                                                          "years-apart", "basemap-requests", "scanned")
+                                                                          "years-apart", "basemap-requests", "scanned",
+                                                                          "scanned-random", "scanned-random-tune")
 # The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
 # output writer against gdalwarp, no registration cases of its own), 'nonrigid' (local distortion, for the
 # local correction), 'batch' (throughput on a Dask cluster, no cases of its own) and 'basemap' (onto a local
@@ -38,7 +39,8 @@ FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "
 # its own ground: hamta.bench.goals.speed) and 'years-apart' (dates years apart, georeferencing moved:
 # hamta.bench.goals.years_apart) and 'basemap-requests' (the requests a search sends on a layer with data
 # everywhere: hamta.bench.goals.basemap_requests) and 'scanned' (sheets by their own printed grid:
-# hamta.bench.goals.scanned) run on request.
+# hamta.bench.goals.scanned) and 'scanned-random', 'scanned-random-tune' (sheets drawn at random, held-out and
+# tuning seeds: hamta.bench.goals.scanned_random) run on request.
 DEFAULT_FAMILIES = FAMILIES[:11]
 GROUPS = {"multimodal-set": tuple(multimodal_set.CATEGORIES)}
 SOURCE_FILES = {"landsat": "landsat/RGB.byte.tif", "multitemporal": "pairs/multitemporal_1.jpg",
@@ -290,7 +292,8 @@ _SPECS = {"crops": _crops, "should-fail": _should_fail, "collar": _collar,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
           "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: [], "basemap": lambda quick: [],
           "basemap-real": lambda quick: [], "speed": lambda quick: [], "years-apart": lambda quick: [],
-          "basemap-requests": lambda quick: [], "scanned": lambda quick: []}
+          "basemap-requests": lambda quick: [], "scanned": lambda quick: [],
+          "scanned-random": lambda quick: [], "scanned-random-tune": lambda quick: []}
 
 
 # ----------------------------------------------------------------------------------------------

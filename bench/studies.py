@@ -10,6 +10,8 @@ def all_studies():
     from .goals.batch import STUDY as batch
     from .goals.large import STUDY as large
     from .goals.scanned import STUDY as scanned
+    from .goals.scanned_random import STUDY as scanned_random
+    from .goals.scanned_random import TUNE_STUDY as scanned_random_tune
     from .goals.speed import STUDY as speed
     from .goals.writing import STUDY as writing
     from .goals.years_apart import STUDY as years_apart
@@ -19,4 +21,4 @@ def all_studies():
     from .reproductions.sibrif import STUDY as sibrif
 
     return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, basemap_requests,
-            speed, years_apart, scanned]
+            speed, years_apart, scanned, scanned_random, scanned_random_tune]

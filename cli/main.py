@@ -131,7 +131,8 @@ def cmd_batch(args) -> int:
         raise ValueError(f"--workers must be at least 1 (default: the CPU count), got {args.workers}")
     options, output = settings_from(args)
     _outside_the_cache(args.out)
-    jobs = read_jobs(args.source, args.out, args.reference, args.sheet_crs)
+    sheet_crs = args.sheet_crs or (output.crs if args.reference is None else None)  # as for one sheet: --crs
+    jobs = read_jobs(args.source, args.out, args.reference, sheet_crs)
     settings = BatchSettings(method=args.method, options=options, output=output,
                              accept_unverified=args.accept_unverified, overwrite=args.overwrite)
     result = run_batch(jobs, settings, scheduler=args.scheduler, workers=args.workers,

@@ -11,7 +11,7 @@ from qgis.PyQt.QtCore import QUrl
 from qgis.PyQt.QtGui import QDesktopServices
 from qgis.PyQt.QtWidgets import QAction, QApplication, QMessageBox, QProgressBar, QPushButton
 
-from .task import CANCELED, CRASHED, UNVERIFIED, WRITTEN, KeepTask, RegisterTask, tr
+from .task import CANCELED, CRASHED, REFUSED, UNVERIFIED, WRITTEN, KeepTask, RegisterTask, tr
 
 TITLE = "Hamta"
 GEOREFERENCER = "mActionShowGeoreferencer"  # the object name of QGIS's Raster > Georeferencer action
@@ -112,6 +112,11 @@ class AutoGeoreference:
             buttons = [(tr("Details"), lambda: self.show_details(ended)),
                        (tr("Keep anyway"), lambda: self.keep(ended, item))] + self.report_button(written)
             item = self.push(tr("'{}' not verified; nothing added.").format(job.target_name), Qgis.Warning, buttons)
+        elif task.outcome == REFUSED:
+            text = str(task.error)
+            buttons = [(tr("Details"), lambda: QMessageBox.information(self.iface.mainWindow(), TITLE, text))]
+            self.push(tr("'{}' not georeferenced; nothing added.").format(job.target_name), Qgis.Warning,
+                      buttons + self.report_button(written))
         elif task.outcome == CRASHED:
             QgsMessageLog.logMessage(task.trace, TITLE, Qgis.Critical)
             self.push(tr("Hamta stopped on an unexpected error ({}: {}); nothing was added. Please report it (the "

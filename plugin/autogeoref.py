@@ -67,10 +67,20 @@ def default_folder(target: str) -> str:
     return folder
 
 
+def can_reference(layer) -> bool:
+    """Whether a layer can be registered onto: a map service, or a raster file with georeferencing (a scan
+    not yet georeferenced cannot)."""
+    if layer.providerType() == "wms":
+        return True
+    return layer.providerType() != "gdal" or is_georeferenced(layer.source())
+
+
 def basemap(layers, target=None):
     """The layer to register onto among ``layers`` (visible raster layers, top first): the first map
-    service ('wms' provider: XYZ, WMS, WMTS), else the first other raster layer; never ``target``."""
-    candidates = [layer for layer in layers if isinstance(layer, QgsRasterLayer) and layer is not target]
+    service ('wms' provider: XYZ, WMS, WMTS), else the first other georeferenced raster layer; never ``target``,
+    never a raster without georeferencing."""
+    candidates = [layer for layer in layers
+                  if isinstance(layer, QgsRasterLayer) and layer is not target and can_reference(layer)]
     services = [layer for layer in candidates if layer.providerType() == "wms"]
     return (services or candidates or [None])[0]
 
@@ -85,7 +95,7 @@ def visible_layers():
 class Job:
     """One registration as the dialog set it: ``extent`` is the search area text
     ('xmin,ymin,xmax,ymax,EPSG:code', in that CRS) or None; without a ``reference``, ``grid`` holds the
-    sheet's own grid's parameters (hints, crs: see :class:`hamta.core.grid.register.GridParams`)."""
+    sheet's own grid's parameters (hints, sheet_crs: see :class:`hamta.core.grid.register.GridParams`)."""
 
     target: str
     target_name: str
@@ -246,6 +256,10 @@ class AutoGeoreferenceDialog(QDialog):
                           "or leave it empty to have the sheet's printed labels read.")
         elif reference is target:
             return tr("Choose a reference layer other than the target: a basemap or a georeferenced raster.")
+        elif isinstance(reference, QgsRasterLayer) and not can_reference(reference):
+            return tr("'{}' has no georeferencing, so it cannot be the reference: choose a basemap or a "
+                      "georeferenced raster, or no reference layer to georeference '{}' by its printed grid."
+                      ).format(reference.name(), target.name())
         if not self.folder.filePath().strip():
             return tr("Choose an output folder.")
         if isinstance(reference, QgsRasterLayer) and self.extent() is None and not is_georeferenced(target.source()) \
@@ -275,6 +289,6 @@ class AutoGeoreferenceDialog(QDialog):
         grid = None
         if reference is None:
             crs = self.sheet_crs.crs()
-            grid = {"hints": self.hints.filePath() or None, "crs": crs.authid() or crs.toWkt()}
+            grid = {"hints": self.hints.filePath() or None, "sheet_crs": crs.authid() or crs.toWkt()}
         return Job(target.source(), target.name(), reference, options.extent, self.folder.filePath().strip(), options,
                    self.keep.isChecked(), grid)

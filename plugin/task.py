@@ -15,7 +15,8 @@ import traceback
 from qgis.core import QgsTask
 from qgis.PyQt.QtCore import QCoreApplication, QTimer
 
-CANCELED, WRITTEN, UNVERIFIED, FAILED, CRASHED = "canceled", "written", "unverified", "failed", "crashed"
+CANCELED, WRITTEN, UNVERIFIED, REFUSED, FAILED, CRASHED = ("canceled", "written", "unverified", "refused", "failed",
+                                                             "crashed")
 
 
 def tr(text: str) -> str:
@@ -42,12 +43,13 @@ class _Ends:
 class RegisterTask(_Ends, QgsTask):
     """Registers ``target`` (a raster file) onto ``reference`` (a reference the core reads, see
     :mod:`hamta.core.reference`; or a :class:`hamta.processing.reference.Rendering` of a layer, written
-    here first) and writes the outputs into ``folder``; without a reference, ``grid`` ({hints, crs}) has a
+    here first) and writes the outputs into ``folder``; without a reference, ``grid`` ({hints, sheet_crs}) has a
     scanned sheet georeferenced by its own printed grid (:mod:`hamta.core.grid`).
 
     After ``finished``: ``outcome`` is one of :data:`WRITTEN` (the outputs: verified, or unverified and
     kept), :data:`UNVERIFIED` (not verified: only the report was written, ``error`` says why),
-    :data:`FAILED` (a :class:`hamta.core.HamtaError` in ``error``), :data:`CRASHED` (a bug:
+    :data:`REFUSED` (nothing to register: a :class:`hamta.core.errors.Refused` in ``error``, its report in
+    ``written``), :data:`FAILED` (a :class:`hamta.core.HamtaError` in ``error``), :data:`CRASHED` (a bug:
     ``error`` and ``trace``) or :data:`CANCELED`. ``result`` and ``written`` ({output: path}) hold
     what :func:`hamta.core.run` returned.
     """
@@ -72,7 +74,7 @@ class RegisterTask(_Ends, QgsTask):
 
     def _run(self):
         from ..core import run
-        from ..core.errors import HamtaError, RegistrationCanceled, UnverifiedResult
+        from ..core.errors import HamtaError, Refused, RegistrationCanceled, UnverifiedResult
         from ..core.outputs import OutputPaths
 
         try:
@@ -90,6 +92,8 @@ class RegisterTask(_Ends, QgsTask):
             self.outcome = CANCELED
         except UnverifiedResult as exc:
             self.outcome, self.error, self.result, self.written = UNVERIFIED, exc, exc.result, exc.written
+        except Refused as exc:
+            self.outcome, self.error, self.written = REFUSED, exc, dict(exc.written)
         except HamtaError as exc:
             self.outcome, self.error = FAILED, exc
         except Exception as exc:  # a bug: shown as one, never lost in the worker thread
@@ -103,7 +107,7 @@ class RegisterTask(_Ends, QgsTask):
     def _grid_params(self):
         from ..core.grid.register import GridParams
 
-        return GridParams(self.grid["hints"], self.grid["crs"])  # the sheet's CRS: what its coordinates count in
+        return GridParams(self.grid["hints"], self.grid["sheet_crs"])
 
     def _block_feedback(self):
         """A feedback that :meth:`cancel` cancels: the layer's read stops with the task."""

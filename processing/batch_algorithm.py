@@ -8,6 +8,7 @@ from qgis.core import (
     QgsProcessingOutputNumber,
     QgsProcessingOutputVectorLayer,
     QgsProcessingParameterBoolean,
+    QgsProcessingParameterCrs,
     QgsProcessingParameterEnum,
     QgsProcessingParameterFile,
     QgsProcessingParameterFolderDestination,
@@ -44,7 +45,7 @@ def batch_methods():
 class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
     JOBS, TARGETS, REFERENCE, OUTPUT_FOLDER = "JOBS", "TARGETS", "REFERENCE", "OUTPUT_FOLDER"
     METHOD, KEEP_UNVERIFIED = "METHOD", "KEEP_UNVERIFIED"
-    SCHEDULER, WORKERS, RESULTS = "SCHEDULER", "WORKERS", "RESULTS"
+    SCHEDULER, WORKERS, RESULTS, SHEET_CRS = "SCHEDULER", "WORKERS", "RESULTS", "SHEET_CRS"
 
     def tr(self, text):
         return QCoreApplication.translate(_CONTEXT, text)
@@ -77,6 +78,9 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
             "outputs into its own folder under the output folder (a job list's output: a folder inside it); a pair "
             "that fails is recorded and the others go on; running again skips the pairs already done. The result "
             "layer holds every target's footprint with its verdict, error figures, method, time and output paths.\n\n"
+            "Scanned sheets of a map series: choose no reference but the CRS of their printed coordinates; each sheet "
+            "is georeferenced by its own printed grid (its labels read, or the hints of the Georeferencer's "
+            "'<raster>.points' beside it); a job list does the same with its 'crs' and 'hints' columns.\n\n"
             "QGIS's own batch mode over the single-pair algorithms works too.")
 
     def initAlgorithm(self, config=None):
@@ -86,8 +90,15 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
             self.REFERENCE, self.tr("Reference raster (for the targets above)"), optional=True))
         jobs = QgsProcessingParameterFile(self.JOBS, self.tr("Job list instead (CSV or GeoPackage)"), optional=True,
                                           fileFilter=self.tr("Job lists (*.csv *.gpkg)"))
-        jobs.setHelp(self.tr("Job list instead (CSV or GeoPackage: target, reference, method, model, output)"))
+        jobs.setHelp(self.tr("Job list instead (CSV or GeoPackage: target, reference, method, model, crs, hints, "
+                             "output)"))
         self.addParameter(jobs)
+        sheet_crs = QgsProcessingParameterCrs(self.SHEET_CRS, self.tr("CRS of printed coordinates (sheets)"),
+                                              optional=True)
+        sheet_crs.setHelp(self.tr("Scanned sheets georeferenced by their own printed grid: what their printed "
+                                  "coordinates count in (EPSG:4326 or EPSG:4269 for degrees, the national grid's CRS "
+                                  "for its metres, feet or yards)"))
+        self.addParameter(sheet_crs)
         self.addParameter(QgsProcessingParameterEnum(self.METHOD, self.tr("Method"), options=batch_methods(),
                                                      defaultValue=0))
         self.addParameter(QgsProcessingParameterBoolean(
@@ -109,12 +120,18 @@ class BatchRegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
 
     def _jobs(self, parameters, context, out):
         jobs_file = self.parameterAsFile(parameters, self.JOBS, context)
+        crs = self.parameterAsCrs(parameters, self.SHEET_CRS, context)
+        sheet_crs = (crs.authid() or crs.toWkt()) if crs.isValid() else None
         if jobs_file:
-            return read_jobs(jobs_file, out)
+            return read_jobs(jobs_file, out, sheet_crs=sheet_crs)
         layers = self.parameterAsLayerList(parameters, self.TARGETS, context)
         layer = self.parameterAsRasterLayer(parameters, self.REFERENCE, context)
+        if layers and layer is None and sheet_crs:
+            return jobs_for_targets([target.source() for target in layers], None, out, sheet_crs)
         if not layers or layer is None:
-            raise QgsProcessingException(self.tr("Choose target rasters and a reference raster, or a job list."))
+            raise QgsProcessingException(self.tr("Choose target rasters and a reference raster (or, for scanned "
+                                                 "sheets by their printed grid, the CRS of their printed "
+                                                 "coordinates), or a job list."))
         reference = layer_reference(layer)
         if reference is None:
             raise QgsProcessingException(self.tr(

@@ -1,9 +1,9 @@
-"""Calibrate how often a lattice placed where no grid is printed looks printed (hamta.core.grid.lattice).
+"""Calibrate how often a lattice placed where no grid is printed looks printed (hamta.core.grid.evidence).
 
 Lattices are fitted from random hints (two points, a random turn, a random step of 24-400 px) on images that
 carry no printed grid: windows of the real imagery in ../shared/data (Landsat, NAIP of several dates) and of the
 multimodal set's maps, and synthetic sheets drawn without a grid (hamta.bench.random_sheets, style 'none').
-Each family's lines are judged as hamta.core.grid.lattice.evidence judges them (a line stands where it, a piece
+Each family's lines are judged as hamta.core.grid.evidence.evidence judges them (a line stands where it, a piece
 around a crossing, or a tick, holds more ink than every copy of itself moved across by part of a step). Printed:
 
 - the share of lines that stand, per family: P_CHANCE is set above its 99th percentile (a binomial with it
@@ -68,7 +68,8 @@ def trial(grey, rng):
     """Families (printed, lines) and whether the lattice is called printed, for one random lattice."""
     from pyproj import CRS
 
-    from hamta.core.grid import sheet as S
+    from hamta.core.grid.finding import find_crossings
+    from hamta.core.grid.placing import place_lattice
     from hamta.core.grid.planes import planes_for
     from hamta.core.grid.scan import LineSource
 
@@ -81,13 +82,13 @@ def trial(grey, rng):
     hints = np.array([[*p0, 500000.0, 5000000.0], [*(p0 + d), 503000.0, 5000000.0]])
     plane = planes_for(CRS.from_user_input("EPSG:32633"), None)[0]
     source = LineSource.from_array(grey)
-    placed = S._lattice(source, {}, plane, hints, (step, step))
+    placed = place_lattice(source, {}, plane, hints, (step, step))
     if placed is None:
         return None
     ev = placed.evidence
     share = None
     if ev.printed:
-        fit = S._crossings(source, plane, placed, _Silent())
+        fit = find_crossings(source, plane, placed, _Silent())
         share = fit.share
     return [(f.printed, f.lines) for f in ev.families], ev.printed, share
 
@@ -109,10 +110,10 @@ def main():
     args = parser.parse_args()
     rng = np.random.default_rng(args.seed)
     pool = images(args.data, rng, max(args.trials // 5, 12))
-    from hamta.core.grid import lattice
+    from hamta.core.grid import evidence
 
     for z in args.z:
-        lattice.Z_LINE = z
+        evidence.Z_LINE = z
         trials = np.random.default_rng(args.seed + 1)
         shares, alarms, found, done = [], 0, [], 0
         for k in range(args.trials):

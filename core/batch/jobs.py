@@ -92,15 +92,17 @@ def read_jobs(source: str, out: str, reference: Union[str, Reference, None] = No
     return _jobs(rows, base, out, reference, f"the job list '{source}'", sheet_crs)
 
 
-def jobs_for_targets(targets: List[str], reference: Union[str, Reference], out: str) -> List[Job]:
-    """One job per target onto ``reference`` (text or a resolved reference), each into ``<out>/<target name>``
-    (unique)."""
-    return _jobs([{"target": t} for t in targets], os.getcwd(), out, reference, "the targets")
+def jobs_for_targets(targets: List[str], reference: Union[str, Reference, None], out: str,
+                     sheet_crs: Optional[str] = None) -> List[Job]:
+    """One job per target onto ``reference`` (text or a resolved reference), or without one each by its own grid
+    (its printed coordinates in ``sheet_crs``), each into ``<out>/<target name>`` (unique)."""
+    return _jobs([{"target": t} for t in targets], os.getcwd(), out, reference, "the targets", sheet_crs)
 
 
 def _jobs(rows: list, base: str, out: str, reference, source: str, sheet_crs: Optional[str] = None) -> List[Job]:
     """Jobs from ``rows`` (dicts of the list's columns), rasters relative to ``base``; a row without a reference
-    where none is given is a sheet by its grid, in its ``crs`` or ``sheet_crs``."""
+    where none is given is a sheet by its grid, in its ``crs`` or ``sheet_crs``, its hints from its ``hints`` column
+    or else the Georeferencer's ``<raster>.points`` beside it."""
     root = os.path.abspath(out)
     default = _reference(reference, os.getcwd())
     outputs = _outputs(rows, root, source)
@@ -112,6 +114,8 @@ def _jobs(rows: list, base: str, out: str, reference, source: str, sheet_crs: Op
         ref = _reference(row.get("reference"), base) or default
         crs = (row.get("crs") or "").strip() or sheet_crs
         hints = _path(row.get("hints"), base)
+        if not ref and not hints and os.path.isfile(target + ".points"):
+            hints = target + ".points"  # where QGIS's Georeferencer saves a raster's points
         if not ref and not crs:
             raise InputError(f"Row {i} of {source} has no reference, and no --reference was given (a scanned sheet "
                              "by its own grid: a 'crs' column, or --sheet-crs).")

@@ -1,12 +1,16 @@
-"""Scanned maps georeferenced by their own printed grid or graticule (issue 56), from the coordinates printed
-in the sheet's margins, or from two or three crossings placed roughly with their coordinates (hints, a QGIS
-Georeferencer ``.points`` file):
+"""Scanned maps georeferenced by their own printed grid or graticule, from the coordinates printed in the sheet's
+margins, or from two or three crossings placed roughly with their coordinates (hints, a QGIS Georeferencer
+``.points`` file):
 
-- :mod:`.labels` reads the printed coordinates (Tesseract) and makes hints of them;
+- :mod:`.ocr` finds the words in the margins and reads them (Tesseract, RapidOCR); :mod:`.labels` parses each;
+  :mod:`.reading` makes hints of the labels that agree (:mod:`.edges` fits each edge's labels);
 - :mod:`.scan` reads the scan's line map window by window (a 30 000 px scan is never held whole);
-- :mod:`.lattice` places every grid line of the sheet at once on it, from the hints' first model;
-- :mod:`.lines` finds where two printed lines cross, to a fraction of a pixel;
-- :mod:`.sheet` turns the lattice into every crossing of the sheet, each checked against its grid line;
-- :mod:`.register` makes a registration result of them (GCPs onto a frame in the sheet's CRS, the model
-  chosen by the check, the check itself: each grid line predicted by the model fitted without it).
+- :mod:`.steps` the grid's usual steps, :mod:`.planes` the planes a graticule may be drawn in;
+- :mod:`.placing` places the lattice of every grid line at once from the hints' first model (:mod:`.lattice`
+  fits it), and :mod:`.evidence` judges whether it is printed against the sheet's own background; :mod:`.frame`
+  finds the neatline and its ticks;
+- :mod:`.sheet` searches the steps and planes; :mod:`.finding` finds every crossing where it is printed
+  (:mod:`.lines`: two printed lines' crossing, to a fraction of a pixel);
+- :mod:`.check` chooses the model and the verdict (each grid line predicted by the model fitted without it;
+  the labels of opposite edges against the lattice), once; :mod:`.register` makes a registration result of it.
 """

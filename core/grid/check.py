@@ -24,7 +24,7 @@ from typing import Dict, Optional, Tuple
 import numpy as np
 
 from .crossings import lines_held_out
-from .sheet import SheetFit
+from .finding import SheetFit
 from .steps import describe_pair
 
 KINDS = (("affine", 6, 3, 0.0), ("polynomial-2", 12, 4, 0.5), ("polynomial-3", 30, 5, 0.8), ("tps", 12, 4, 0.5))
@@ -160,7 +160,7 @@ def choose_model(asked: Optional[str], fit: SheetFit, scan_px, frame_px, scale: 
 def along_frames(errors, crossings, frame_px) -> np.ndarray:
     """``errors`` (n, 2, frame px) with a tick's kept along its frame only (its coordinate across the frame is the
     frame's, fitted on the frame's ticks: only its place along the frame tests the model). ``crossings``: rows as
-    :class:`hamta.core.grid.sheet.SheetFit` holds them (the frames' directions in scan px)."""
+    :class:`hamta.core.grid.finding.SheetFit` holds them (the frames' directions in scan px)."""
     from ..estimation.models import fit_model
 
     if crossings.shape[1] < 9 or not (crossings[:, 6] >= 0).any():
@@ -236,7 +236,7 @@ def _unsound(fit: SheetFit):
         yield (f"only {len(fit.crossings)} crossings of the printed grid were found ({MIN_CROSSINGS} needed, on two "
                "lines each way)")
     if fit.spread < MIN_SPREAD:
-        yield f"the crossings found cover {fit.spread:.0%} of the sheet ({MIN_SPREAD:.0%} needed)"
+        yield f"the crossings found cover {fit.spread:.0%} of the map ({MIN_SPREAD:.0%} needed)"
     if fit.share < MIN_SHARE:
         yield (f"only {len(fit.crossings)} of the {fit.reachable} crossings the lattice puts among them were found on "
                f"printed lines ({MIN_SHARE:.0%} needed): the lattice may not be the printed grid")

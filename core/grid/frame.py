@@ -104,6 +104,17 @@ def tick_pieces(frames: List[FrameLine], nodes, step, plane):
 NODE_SHARE = 0.15  # of a step: the piece of a grid line each side of a crossing that a cross inks (arms 3-25 %)
 
 
+def crossing_arms(nodes, step, plane) -> np.ndarray:
+    """Plane points (n, 14, 2) of both lines' pieces around each of ``nodes`` (grid coordinates; those the plane
+    does not map are left out): what a grid printed as crosses inks, and full lines too."""
+    step = np.asarray(step, float)
+    offsets = np.linspace(-NODE_SHARE, NODE_SHARE, 7)
+    arms = np.concatenate([np.column_stack([offsets * step[0], np.zeros(7)]),
+                           np.column_stack([np.zeros(7), offsets * step[1]])])
+    xy = plane.forward((nodes[:, None, :] + arms[None]).reshape(-1, 2)).reshape(len(nodes), len(arms), 2)
+    return xy[np.isfinite(xy).all(axis=(1, 2))]
+
+
 def node_pieces(nodes, step, plane):
     """[(axis, value, plane points)] of each grid line through ``nodes``: its pieces around every crossing on it, as
     one set (a grid printed as crosses, or dashed lines, inks those)."""

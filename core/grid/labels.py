@@ -17,7 +17,7 @@ import re
 from dataclasses import dataclass, replace
 from typing import List, Optional
 
-from .ocr import Word
+from .words import Word
 
 HEMISPHERES = "NSEW"
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import List, Optional, Tuple
+from typing import Optional
 
 import numpy as np
 
@@ -27,6 +27,7 @@ BLURS = (0.15, 0.05)  # of the grid's step: the line map's blur where the first 
 # first, then a narrower one)
 REACH = 0.3  # of a step: how far the lattice may move from the hints' model (a whole step finds as much ink)
 SNAPS = (0.3, 0.12, 0.05)  # of a step: how far across each line its ink is looked at, at each snap
+FLOOR_PX = 3.0  # line-map px: the least reach of a snap (a narrower profile is all line, and has no peak)
 BENT_GAIN = 1.02  # a second-order lattice is kept when it finds this much more ink than the affine
 
 
@@ -44,10 +45,15 @@ class Lattice:
         return self.model.order
 
 
-def fit_lattice(work: np.ndarray, factor: int, lines, start, spacing_px: float, bend: bool = True) -> Lattice:
+def fit_lattice(work: np.ndarray, factor: int, lines, start, spacing_px: float, bend: bool = True,
+                arms: Optional[np.ndarray] = None, mask: Optional[np.ndarray] = None) -> Lattice:
     """The lattice model from ``start`` (any model plane -> scan px with ``apply``): ``lines`` is a list of (n, 2)
     arrays of plane points along each grid line; ``spacing_px`` the grid's step on the scan; ``bend``: a
-    second-order lattice may be kept (:data:`BENT_GAIN`)."""
+    second-order lattice may be kept (:data:`BENT_GAIN`); ``arms``: plane points (n, k, 2) of the lines' pieces
+    around each crossing (:func:`hamta.core.grid.frame.crossing_arms`). The lattice's ink is the median crossing's
+    (what most crossings hold, not what a frame, the lettering in it or a road gives a few; a grid printed as
+    crosses inks only there), or, with fewer than :data:`LEAST_CROSSINGS`, the mean along its lines; ``mask``: where
+    the map is (:func:`on_map`; None: everywhere), the crossings elsewhere left out."""
     import cv2
     from scipy.optimize import minimize
 
@@ -56,6 +62,26 @@ def fit_lattice(work: np.ndarray, factor: int, lines, start, spacing_px: float, 
     scale = max(float(np.abs(pts - centre).max()), 1e-9)
     design = poly_design((pts - centre) / scale, 1)
     m = np.linalg.lstsq(design, start.apply(pts), rcond=None)[0]
+    if arms is not None and mask is not None:
+        kept = values_at(mask.astype(np.float32), factor)(start.apply(arms.mean(axis=1))) > 0.5
+        arms = arms[kept] if kept.sum() >= LEAST_CROSSINGS else arms
+    crossings = arms is not None and len(arms) >= LEAST_CROSSINGS
+    measured = arms.reshape(-1, 2) if crossings else pts
+    at = poly_design((measured - centre) / scale, 1)  # where the lattice's ink is measured
+
+    def lattice_ink(image):
+        if not crossings:
+            return mean_ink(image, factor)
+        values = values_at(image, factor)
+        k = arms.shape[1]
+
+        def median_crossing(px) -> float:
+            v = values(px).reshape(-1, k)
+            seen = np.isfinite(v).sum(axis=1) > k // 2
+            if seen.sum() < LEAST_CROSSINGS:
+                return 0.0
+            return float(np.median(np.nanmean(v[seen], axis=1)))
+        return median_crossing
     reach = REACH * spacing_px
     step_work = spacing_px / factor
 
@@ -68,44 +94,90 @@ def fit_lattice(work: np.ndarray, factor: int, lines, start, spacing_px: float, 
         return out
 
     def climb_similar(m, image, move):  # four parameters where the line map is blurred: a steadier basin
-        ink = _ink(image, factor)
+        ink = lattice_ink(image)
         size = max(float(np.hypot(*m[1])), float(np.hypot(*m[2])), 1e-9)
-        res = minimize(lambda v: -ink(design @ similar(m, v)), np.zeros(4), method="Powell",
+        res = minimize(lambda v: -ink(at @ similar(m, v)), np.zeros(4), method="Powell",
                        bounds=[(-reach, reach)] * 2 + [(-reach / size, reach / size)] * 2,
                        options={"xtol": 1e-4, "ftol": 1e-5, "direc": np.diag([move, move, move / size, move / size])})
         return similar(m, res.x)
 
     fine = cv2.GaussianBlur(work, (0, 0), 0.7)
-    ink = _ink(fine, factor)
-    snap = _Snapper(fine, factor, lines, centre, scale, spacing_px, design @ m)
+    ink = lattice_ink(fine)
+    snap = _Snapper(fine, factor, lines, centre, scale, spacing_px, design @ m,
+                    judge=lambda c, order: ink(poly_design((measured - centre) / scale, order) @ c))
     tries, current = [snap(m, 1)], m
     for blur in BLURS:
         sigma = blur * step_work
         current = climb_similar(current, cv2.GaussianBlur(work, (0, 0), sigma), sigma * factor)
         tries.append(snap(current, 1))
-    m = max(tries, key=lambda t: ink(design @ t))
-    best = Lattice(PolynomialModel(1, centre, scale, m), ink(design @ m), snap.share(m, 1))
+    m = max(tries, key=lambda t: ink(at @ t))
+    best = Lattice(PolynomialModel(1, centre, scale, m), ink(at @ m), snap.share(m, 1))
     if bend and snap.bendable:
         m2 = snap(np.vstack([m, np.zeros((3, 2))]), 2)
-        bent = ink(poly_design((pts - centre) / scale, 2) @ m2)
+        bent = ink(poly_design((measured - centre) / scale, 2) @ m2)
         if bent > BENT_GAIN * best.ink:
             best = Lattice(PolynomialModel(2, centre, scale, m2), bent, snap.share(m2, 2))
     return best
+
+
+def on_map(work, factor: int, arms: np.ndarray, start, spacing_px: float) -> Optional[np.ndarray]:
+    """Where the line map shows the map rather than blank paper (a bool map like ``work``), or None where all of
+    it may: the most ink within half a step of each crossing of ``arms`` (plane points, n x k x 2, placed by
+    ``start``), split over the crossings into two classes (:func:`_two_classes`, on its logarithm); where the upper
+    holds :data:`BLANK_RATIO` times the lower's or more, the lower is blank paper (a scan's margins, the scanner's
+    bed: their ink is the scan's noise, the map's is its lines). The lattice is fitted to the crossings on the map,
+    and its lines judged there, so that a sheet turned on a wider bed is judged by its map."""
+    import cv2
+
+    side = max(int(spacing_px / factor) | 1, 3)
+    most = cv2.dilate(work, cv2.getStructuringElement(cv2.MORPH_RECT, (side, side)))
+    at = values_at(most, factor)(start.apply(arms.mean(axis=1)))
+    seen = np.log(np.maximum(np.sort(at[np.isfinite(at)]), 1e-6))
+    if len(seen) < 2 * LEAST_CROSSINGS:
+        return None
+    split = _two_classes(seen)
+    low, high = seen[:split], seen[split:]
+    if len(high) < LEAST_CROSSINGS or high.mean() - low.mean() < math.log(BLANK_RATIO):
+        return None
+    return most >= math.exp((low[-1] + high[0]) / 2)
+
+
+def _two_classes(sorted_values: np.ndarray) -> int:
+    """Where ``sorted_values`` split into two classes of the largest variance between them (Otsu's split): the
+    index of the upper class's first value."""
+    n = len(sorted_values)
+    k = np.arange(1, n)
+    total = np.cumsum(sorted_values)
+    low = total[:-1] / k
+    high = (total[-1] - total[:-1]) / (n - k)
+    return int(np.argmax(k * (n - k) * (high - low) ** 2)) + 1
+
+
+BLANK_RATIO = 5.0  # how much more ink (geometric means) the map's crossings hold than blank paper's at least (random
+# synthetic sheets, tune seeds: the map's 7 times blank paper's or more, a map without margins splits at 1.5-3)
+LEAST_CROSSINGS = 8  # crossings the median crossing is taken over (fewer: the mean along the lines)
+
+
+def points_per_step(per_step: float) -> int:
+    """How many points a step a lattice's lines are sampled at (``per_step``: the step in line-map px): one a
+    line-map pixel, four at least. Lines start half a step before a crossing, so that the snapper's segments,
+    a step of points each, are centred on the crossings (a grid printed as crosses inks only there)."""
+    return max(int(math.ceil(per_step)), 4)
 
 
 class _Snapper:
     """Snaps a lattice's lines where they are printed (see the module docstring): ``snapper(m, order)`` -> the
     coefficients (normalised plane coordinates -> scan px) fitted to where each line segment's ink peaks."""
 
-    def __init__(self, image, factor, lines, centre, scale, spacing_px, start_px):
-        self.image, self.factor, self.spacing = image, factor, spacing_px
+    def __init__(self, image, factor, lines, centre, scale, spacing_px, start_px, judge=None):
+        self.image, self.factor, self.spacing, self.judge = image, factor, spacing_px, judge
         self.centre, self.scale = centre, scale
         self.start = (np.vstack(lines), start_px)  # where the hints put the lines: a snap may not move them a step
         points, seg, family = [], [], []
-        for line in lines:  # segments of about a step (a line is sampled spacing/factor points a step), at most
-            n = max(int(round(len(line) / max(spacing_px / factor, 4))), 1)  # 16 points each
-            t = line[-1] - line[0]
-            for part in np.array_split(line, n):
+        n = points_per_step(spacing_px / factor)
+        for line in lines:  # segments of a step, each centred on a crossing (see points_per_step), at most 16
+            t = line[-1] - line[0]  # points each
+            for part in (line[i:i + n] for i in range(0, len(line) - 1, n)):
                 if len(part) >= 2:
                     part = part[np.linspace(0, len(part) - 1, min(len(part), 16)).round().astype(int)]
                     points.append(part)
@@ -122,11 +194,12 @@ class _Snapper:
         pts, start_px = self.start
         u = (pts - self.centre) / self.scale
         for share in SNAPS:
-            got = self._measure(m, order, share * self.spacing)
+            got = self._measure(m, order, max(share * self.spacing, FLOOR_PX * self.factor))
             if got is None or np.abs(poly_design(u, order) @ got - start_px).max() > REACH * self.spacing:
-                break  # too few lines seen each way, or a lattice moved a step from the hints: not this one
-            m = got
-        return m
+                continue  # too few lines seen each way, or a lattice moved a step from the hints: not this one
+            if self.judge is None or self.judge(got, order) >= self.judge(m, order):
+                m = got  # kept where the lattice's ink (its median crossing's) grows: peaks that content put
+        return m  # near the lines (a frame's lettering, a road beside a cross) move it off them
 
     def share(self, m, order: int) -> float:
         """Of the line segments on the sheet, the share whose ink peaks within the last snap's reach (or 1.5 px of
@@ -205,191 +278,41 @@ class _Snapper:
 PEAK = 3.0  # robust deviations above its median a segment's profile must peak to place its line (a line shows)
 
 
-OFF_LATTICE = np.array(sorted({k / n for n in (2, 3, 4, 5, 6) for k in range(1, n)}))  # of a step: where each
-# line is moved to see what the sheet's content alone puts along it: where the lines of a grid printed at a half,
-# third ... sixth of the lattice's step would be (the ratios between usual steps), so that a lattice at a multiple
-# of the printed step finds its copies on printed lines
-Z_LINE = 4.0  # robust deviations of its copies a line's ink must stand above them, besides above them all
-# (tools/calibrate_grid.py: where no grid is printed, a lattice fitted to the content has lines above all their
-# copies often, this far above them seldom)
-LEAST_COPIES = 6  # copies of a line on the sheet it is judged against (a step wider than the sheet leaves fewer)
-P_CHANCE = 0.19  # the mean share of a family's lines that stand out (Z_LINE) where no grid is printed, on lattices
-# fitted to imagery, maps and sheets without a grid (tools/calibrate_grid.py; docs/benchmarks.md)
-CHANCE = 1e-2  # the probability by chance of as many lines standing out, both families together, below which a
-# lattice is taken for printed. A lattice's crossings then decide (hamta.core.grid.check.MIN_SHARE: a lattice where
-# none is printed finds at most 13 % of its crossings, tools/calibrate_grid.py)
-PRINTED_SHARE = 0.4  # the 95th percentile of a family's share of lines standing out where no grid is printed
-# (tools/calibrate_grid.py)
-FAMILY_CHANCE = CHANCE ** 0.5  # a family alone: half the evidence both together need (in log10)
-COPY_SHARE = 0.5  # a lattice whose lines moved by part of a step keep half its ink above the background is not at
-# the printed step (a lattice at twice the step finds as much ink half a step over)
-
-
-@dataclass(frozen=True)
-class Family:
-    """One family of a lattice's lines (``axis`` 0: constant grid x, 1: constant grid y) judged on the line map:
-    ``lines`` on the sheet, ``printed`` of them holding more ink than every copy of themselves moved across by
-    part of a step; ``excess``: the family's ink over its copies' median; ``copy_share``: the strongest copy's
-    ink above that median, as a share of the family's; ``chance``: the probability of as many printed lines
-    where none is (binomial, :data:`P_CHANCE`)."""
-
-    axis: int
-    lines: int
-    printed: int
-    excess: float
-    copy_share: float
-    chance: float
-    alternate: bool = False  # every other line printed, the others not: the lattice is at half the printed step
-
-    @property
-    def stands(self) -> bool:
-        """The family alone stands out from the background (:data:`FAMILY_CHANCE`) and is at its printed step."""
-        return self.chance <= FAMILY_CHANCE and self.copy_share < COPY_SHARE
-
-    @property
-    def at_step(self) -> bool:
-        """The family may be at the printed step: its copies moved by part of a step find no printed lines, its
-        lines are not printed every other one, and more of them are printed than lattices where no grid is printed
-        show but one time in twenty (:data:`PRINTED_SHARE`), or as many as chance seldom gives (a smaller step is
-        tried otherwise)."""
-        return self.copy_share < COPY_SHARE and not self.alternate and self.printed >= 1 and \
-            (self.printed >= PRINTED_SHARE * self.lines or self.chance <= FAMILY_CHANCE)
-
-    def to_dict(self) -> dict:
-        return {"axis": "x" if self.axis == 0 else "y", "lines": self.lines, "printed": self.printed,
-                "ink_over_background": _num(self.excess), "moved_copy_share": _num(self.copy_share),
-                "chance_probability": self.chance}
-
-
-@dataclass(frozen=True)
-class Evidence:
-    """Both families of a lattice: printed when together they are beyond chance (:data:`CHANCE`) and neither
-    keeps its ink moved by part of a step (:data:`COPY_SHARE`)."""
-
-    families: Tuple[Family, Family]
-    threshold: float = CHANCE  # the chance below which it is printed (CHANCE shared by the lattices a search tries)
-
-    @property
-    def chance(self) -> float:
-        return float(np.prod([f.chance for f in self.families]))
-
-    @property
-    def printed(self) -> bool:
-        return self.chance <= self.threshold and all(f.at_step for f in self.families)
-
-    @property
-    def score(self) -> float:
-        """-log10 of the chance: the larger, the surer (to rank lattices)."""
-        return -math.log10(max(self.chance, 1e-300))
-
-    @property
-    def excess(self) -> float:
-        """The smaller family's ink over its background: how well the lattice lies on the printed lines."""
-        return float(min(f.excess for f in self.families))
-
-    def text(self) -> str:
-        x, y = self.families
-        return (f"{x.printed} of {x.lines} lines of constant x and {y.printed} of {y.lines} of constant y stand out "
-                f"from the sheet's background (chance {self.chance:.0e})")
-
-    def to_dict(self) -> dict:
-        return {"printed": self.printed, "chance_probability": self.chance, "threshold": self.threshold,
-                "families": [f.to_dict() for f in self.families]}
-
-
-def evidence(work: np.ndarray, factor: int, lines, axes, lattice: Lattice, steps: np.ndarray, values=None,
-             pieces=()) -> Optional[Evidence]:
-    """The :class:`Evidence` of ``lattice``'s lines (plane points, ``axes`` 0 or 1 each, ``values`` their grid
-    coordinates) on ``work``; ``steps``: scan px of one grid step along each grid axis; ``pieces``: (axis, value,
-    plane points) of pieces of grid lines that a grid printed as crosses or ticks inks alone (around each
-    crossing; where a line meets the frame, :func:`hamta.core.grid.frame.tick_pieces`): a line is printed where
-    it, or one of its pieces, holds more ink than every copy of itself moved across by part of a step. None where
-    a family has no line on the sheet."""
-    from scipy.stats import binom
-
-    ink = _ink(work, factor, outside=math.nan, least=0.05)  # a line crossing a corner of the sheet counts
-    by_line = {}
-    for axis, value, xy in pieces:
-        by_line.setdefault((axis, round(value, 9)), []).append(xy)
-    families: List[Family] = []
-    def stands(px, axis):
-        """(ink of the line at ``px``, its copies' inks, whether it holds more than all) or None off the sheet; the
-        copies moved the way that keeps them on the sheet (a line near its edge)."""
-        value = ink(px)
-        if not np.isfinite(value):
-            return None
-        ahead = np.array([ink(px + f * steps[axis]) for f in OFF_LATTICE])
-        copies = ahead if np.isfinite(ahead).all() else np.where(
-            np.isfinite(ahead), ahead, [ink(px - f * steps[axis]) for f in OFF_LATTICE])
-        if np.isfinite(copies).sum() < LEAST_COPIES:
-            return None
-        middle = float(np.nanmedian(copies))
-        spread = 1.4826 * float(np.nanmedian(np.abs(copies - middle))) + 1e-6 * (abs(middle) + 1e-6)
-        return value, copies, bool(value > np.nanmax(copies) and (value - middle) / spread >= Z_LINE)
-
-    for axis in (0, 1):
-        here, moved, printed, whole, flags = [], [], 0, [], []
-        for k, (line, a) in enumerate(zip(lines, axes)):
-            if a != axis:
-                continue
-            found = stands(lattice.model.apply(line), axis)
-            if found is None:  # off the sheet
-                continue
-            value, copies, alone = found
-            here.append(value)
-            moved.append(copies)
-            whole.append(alone)
-            for xy in (by_line.get((axis, round(values[k], 9)), []) if values is not None else []):
-                tick = stands(lattice.model.apply(xy), axis)
-                alone |= tick is not None and tick[2]
-            printed += bool(alone)
-            flags.append(bool(alone))
-        if not here:
-            return None
-        here, moved, whole = np.array(here), np.array(moved), np.array(whole)
-        background = float(np.nanmedian(moved))
-        families.append(Family(axis, len(here), printed, float(here.mean()) / max(background, 1e-12),
-                               _copy_share(here, moved) if whole.any() else 0.0,
-                               float(binom.sf(printed - 1, len(here), P_CHANCE)), _alternate(flags)))
-    return Evidence(tuple(families))
-
-
-def _alternate(flags) -> bool:
-    """Whether the lines (in order) are printed every other one: one parity two thirds printed or more, the other a
-    third or less, over four lines or more."""
-    flags = np.asarray(flags, bool)
-    if len(flags) < 4:
-        return False
-    even, odd = flags[0::2].mean(), flags[1::2].mean()
-    return bool(max(even, odd) >= 2 / 3 and min(even, odd) <= 1 / 3)
-
-
-def _copy_share(here, moved) -> float:
-    """The ink a family's strongest copy moved by part of a step keeps above the copies' median, as a share of the
-    family's (a family of ticks alone, no line printed whole, has none: its copies find other ticks, and so its
-    lines do not stand out of them)."""
-    with np.errstate(all="ignore"):
-        by_move = np.nanmedian(moved, axis=0)  # each move's copies, over the lines (NaN: off the sheet both ways; the
-    background = float(np.nanmedian(by_move))  # median: one copy that meets the neatline does not count)
-    above = float(np.median(here)) - background
-    copy = float(np.nanmax(by_move)) - background
-    return copy / above if above > 0 else math.inf
-
-
-def _num(v):
-    return float(v) if np.isfinite(v) else None
-
-
-def _ink(image: np.ndarray, factor: int, outside: float = 0.0, least: float = 0.2):
-    """px (n, 2, scan px) -> the mean of ``image`` (a reduced line map) there, over the points inside it
-    (``outside`` where fewer than ``least`` of them, or than 8, are)."""
+def values_at(image: np.ndarray, factor: int):
+    """px (n, 2, scan px) -> ``image`` (a reduced line map) at each point, NaN off it."""
     import cv2
 
     h, w = image.shape
 
+    def values(px) -> np.ndarray:
+        x, y = px[:, 0] / factor - 0.5, px[:, 1] / factor - 0.5
+        inside = (x >= 0) & (y >= 0) & (x <= w - 1) & (y <= h - 1)
+        out = np.full(len(px), np.nan)
+        n = int(inside.sum())
+        if n:
+            rows = -(-n // ROW)  # remap takes fewer than 32767 columns a row
+            mx, my = np.zeros(rows * ROW, np.float32), np.zeros(rows * ROW, np.float32)
+            mx[:n], my[:n] = x[inside], y[inside]
+            out[inside] = cv2.remap(image, mx.reshape(rows, ROW), my.reshape(rows, ROW), cv2.INTER_LINEAR).ravel()[:n]
+        return out
+
+    return values
+
+
+def mean_ink(image: np.ndarray, factor: int, outside: float = 0.0, least: float = 0.2,
+             mask: Optional[np.ndarray] = None):
+    """px (n, 2, scan px) -> the mean of ``image`` (a reduced line map) there, over the points inside it and, with
+    a ``mask`` (:func:`on_map`), on the map (``outside`` where fewer than ``least`` of them, or than 8, are)."""
+    import cv2
+
+    h, w = image.shape
+    on = None if mask is None else values_at(mask.astype(np.float32), factor)
+
     def ink(px) -> float:
         x, y = px[:, 0] / factor - 0.5, px[:, 1] / factor - 0.5
         inside = (x >= 0) & (y >= 0) & (x <= w - 1) & (y <= h - 1)
+        if on is not None:
+            inside &= np.nan_to_num(on(px)) > 0.5
         if inside.sum() < max(least * len(px), 8):
             return outside
         n = int(inside.sum())

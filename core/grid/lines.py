@@ -47,13 +47,14 @@ def crossing(source, xy, directions, radius: float, along=None) -> Optional[Cros
     to ``radius`` px across it. None where either line does not stand out (:data:`PROMINENCE`) or the strips
     leave the scan."""
     alongs = [max(a or 3.0 * radius, radius) for a in (along if isinstance(along, (tuple, list)) else (along,) * 2)]
-    window = source.around(xy, max(alongs) + radius + 2)
+    across = max(radius, PROFILE_PX)  # the profile spans a wide line and the paper beside it; nearer peaks weigh more
+    window = source.around(xy, max(alongs) + across + 2)
     if window is None:
         return None
     lines, x0, y0 = window
     found, strength, ink = [], math.inf, math.inf
     for (dx, dy), reach in zip(directions, alongs):
-        profile = _strip(lines, (xy[0] - x0, xy[1] - y0), (dx, dy), reach, radius)
+        profile = _strip(lines, (xy[0] - x0, xy[1] - y0), (dx, dy), reach, across)
         if profile is None:
             return None
         offsets = (np.arange(len(profile)) - (len(profile) - 1) / 2) / STEPS_PER_PX
@@ -71,6 +72,8 @@ def crossing(source, xy, directions, radius: float, along=None) -> Optional[Cros
 
 
 STEPS_PER_PX = 2  # samples across a line per pixel
+PROFILE_PX = LINE_WIDTH_PX  # px each side: the least a profile across a line spans (the widest line the line map
+# keeps whole, about half of it, and as much paper)
 
 
 def _strip(lines, xy, direction, along: float, radius: float):

@@ -33,8 +33,9 @@ from ..progress import Monitor
 from ..result import Gcp, RegistrationResult, peak_rss_mb
 from ..scratch import process_folder
 from .check import judge
+from .finding import SheetFit
 from .scan import LineSource
-from .sheet import SheetFit, fit_sheet
+from .sheet import fit_sheet
 
 FRAME_SIDE_PX = 2048
 METHOD = "grid"

@@ -21,7 +21,6 @@ from .report import write_report
 def write_refusal(findings: dict, paths, request: Optional[dict] = None) -> Dict[str, str]:
     """Write ``paths.report`` and ``paths.html`` (whichever are asked for) of a refusal; {name: path} written."""
     from ..result import REPORT_SCHEMA_VERSION, versions
-    from . import OutputPaths
     from .atomic import OutputSet
 
     wanted = {k: os.path.abspath(v) for k, v in paths.as_dict().items() if k in ("report", "html")}
@@ -32,7 +31,7 @@ def write_refusal(findings: dict, paths, request: Optional[dict] = None) -> Dict
               "reason": findings.get("reason"), "target": findings.get("target"), "findings": findings,
               "quality": {"verdict": "refused", "reasons": [findings.get("reason")], "check": "grid-held-out-lines"},
               "request": request, "run_id": run_id, "outputs": wanted, "versions": versions()}
-    owned = OutputPaths(report=paths.report, html=paths.html, folder=paths.folder, overwrite=paths.overwrite).owned()
+    owned = type(paths)(report=paths.report, html=paths.html, folder=paths.folder, overwrite=paths.overwrite).owned()
     with OutputSet(run_id, owned) as out:
         if "report" in wanted:
             write_report(out.temp_for(wanted["report"]), report)

@@ -224,3 +224,32 @@ def test_a_map_drawn_from_water_puts_its_lakes_on_the_water_it_was_drawn_from(sh
     wet = water(naip(data, "20160816")[0])
     assert wet[at[:, 1], at[:, 0]].mean() > 0.99
     assert wet[at[:, 1], at[:, 0] + 2].mean() < 0.97
+
+
+def test_a_map_series_in_one_batch_one_verdict_per_sheet(sheets, tmp_path):
+    """``hamta batch SHEETS/ --sheet-crs CRS`` with no reference: each sheet by its grid, its hints from the
+    Georeferencer's ``.points`` beside it; a sheet with no grid is refused in its own folder, with its report."""
+    import shutil
+    import sqlite3
+
+    folder = tmp_path / "series"
+    folder.mkdir()
+    for name, seed in (("utm-km-lines", 2), ("utm-km-crosses", 3)):
+        sheet = sheets[name]
+        shutil.copy(sheet.path, folder / f"{name}.tif")
+        _points(folder / f"{name}.tif.points", sheet.hints(2, seed=seed))
+    blank = folder / "blank.tif"
+    import rasterio
+
+    with rasterio.open(blank, "w", driver="GTiff", width=600, height=400, count=1, dtype="uint8") as dst:
+        dst.write(np.full((1, 400, 600), 235, np.uint8))
+    out = tmp_path / "out"
+    rc = main(["batch", str(folder), "--sheet-crs", "EPSG:32633", "--out", str(out), "--workers", "1", "--quiet"])
+    assert rc == 1  # one sheet refused
+    with sqlite3.connect(out / "batch.gpkg") as con:
+        rows = dict(con.execute("SELECT name, status FROM pairs").fetchall())
+    assert rows == {"blank": "failed", "utm-km-crosses": "verified", "utm-km-lines": "verified"}
+    assert json.loads((out / "blank" / "report.json").read_text())["outcome"] == "refused"
+    for name in ("utm-km-lines", "utm-km-crosses"):
+        report = json.loads((out / name / "report.json").read_text())
+        assert report["method"] == "grid" and report["quality"]["verdict"] == "verified"

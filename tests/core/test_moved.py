@@ -39,7 +39,7 @@ def test_a_moved_georeferencing_is_corrected_without_touching_a_pixel(landsat, t
     with rasterio.open(target, "w", **profile) as out:
         out.write(data)
     result, written = run(target, landsat, OutputPaths(raster=str(tmp_path / "out.tif")),
-                          options=RegisterOptions(model="linear"), output=OutputOptions(grid="target"))
+                          options=RegisterOptions(model="linear"), output=OutputOptions(pixel_grid="target"))
     assert result.verified
     with rasterio.open(written["raster"]) as out:
         assert np.array_equal(out.read(), data) and out.crs == profile["crs"]

@@ -393,3 +393,70 @@ def test_one_click_georeferences_a_sheet_by_its_grid_when_no_reference_is_chosen
     truth = np.column_stack(Transformer.from_crs("EPSG:4326", "EPSG:32633", always_xy=True).transform(*nodes.T))
     got = np.array([r["map"] for r in map_points_from_report(str(report), sheet.to_scan(nodes))])
     assert np.hypot(*(got - truth).T).max() < 2.5 * sheet.spec.pixel_m
+
+
+def test_a_second_scan_is_never_proposed_as_the_reference_of_another(sheet_session, tmp_path):
+    """A scan without georeferencing cannot be registered onto: the dialog proposes none (the sheet's own grid)
+    and says why when one is chosen."""
+    import rasterio
+
+    plugin, iface, sheet = sheet_session
+    with rasterio.open(sheet.path) as src:
+        profile = {k: v for k, v in src.profile.items() if k not in ("crs", "transform")}
+        pixels = src.read()
+    other_path = str(tmp_path / "second_scan.tif")
+    with rasterio.open(other_path, "w", **profile) as dst:
+        dst.write(pixels)
+    other = QgsRasterLayer(other_path, "second scan")
+    assert other.isValid()
+    QgsProject.instance().addMapLayer(other)
+    first = QgsProject.instance().mapLayersByName("sheet")[0]
+    iface.active = other
+    plugin.action.trigger()
+    dialog = plugin.autogeoref.dialog
+    assert dialog.target.currentLayer() is other and dialog.reference.currentLayer() is None
+    dialog.reference.setLayer(first)
+    dialog.run_button.click()
+    text = dialog.bar.currentItem().text()
+    assert dialog.isVisible() and "'sheet' has no georeferencing" in text and "printed grid" in text
+    dialog.close()
+
+
+def test_a_refusal_says_so_in_one_line_with_its_details_and_report(qgis_app, tmp_path, monkeypatch):
+    """A sheet with no printed grid, no hints and no labels to read: nothing is added; the report of what was
+    looked for is one click away."""
+    import rasterio
+
+    from hamta.plugin.plugin import HamtaPlugin
+
+    monkeypatch.setenv("HAMTA_CACHE", str(tmp_path / "cache"))
+    blank = str(tmp_path / "blank.tif")
+    paper = np.random.default_rng(0).normal(235, 4, (600, 800)).clip(0, 255).astype(np.uint8)
+    with rasterio.open(blank, "w", driver="GTiff", width=800, height=600, count=1, dtype="uint8") as dst:
+        dst.write(paper, 1)
+    project = QgsProject.instance()
+    project.clear()
+    layer = QgsRasterLayer(blank, "blank")
+    project.addMapLayer(layer)
+    iface = Iface()
+    iface.active = layer
+    plugin = HamtaPlugin(iface)
+    plugin.initGui()
+    try:
+        plugin.action.trigger()
+        dialog = plugin.autogeoref.dialog
+        assert dialog.reference.currentLayer() is None
+        dialog.sheet_crs.setCrs(QgsCoordinateReferenceSystem("EPSG:4326"))
+        dialog.run_button.click()
+        wait_for_tasks(plugin.autogeoref, timeout=120)
+        [(level, text, buttons)] = messages(iface)
+        assert level == Qgis.Warning and text.startswith("'blank' not georeferenced; nothing added"), text
+        assert buttons == ["Details", "Open report"]
+        assert [layer.name() for layer in project.mapLayers().values()] == ["blank"]
+        report = json.loads(pathlib.Path(dialog.folder.filePath(), "report.json").read_text())
+        assert report["outcome"] == "refused" and report["findings"]["reason"]
+        assert pathlib.Path(dialog.folder.filePath(), "report.html").is_file()
+    finally:
+        plugin.unload()
+        project.clear()
+        sip.delete(iface.window)
