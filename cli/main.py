@@ -10,7 +10,7 @@ import sys
 import time
 from typing import List, Optional
 
-from ..core.errors import HamtaError, MethodCrashed, Refused, RegistrationCanceled
+from ..core.errors import HamtaError, MethodCrashed, Refused, RegistrationCanceled, UsageError
 from ..core.text import terminal_safe
 from .options import FLAGS, settings_from
 from .parser import build_parser
@@ -43,12 +43,12 @@ def cmd_register(args) -> int:
     method, params = args.method, _pairs(args.param)
     if args.reference is None or method == "grid":
         if args.reference is not None:
-            raise ValueError("--method grid georeferences a sheet by its own printed grid: give no --reference")
+            raise UsageError("--method grid georeferences a sheet by its own printed grid: give no --reference")
         method, params = "grid", dict(params, hints=args.gcps)
         if args.sheet_crs:
             params["sheet_crs"] = args.sheet_crs
     elif args.gcps is not None or args.sheet_crs is not None:
-        raise ValueError("--gcps and --sheet-crs are for a sheet georeferenced by its own grid: leave out --reference")
+        raise UsageError("--gcps and --sheet-crs are for a sheet georeferenced by its own grid: leave out --reference")
     paths = OutputPaths.in_folder(args.out, vrt=args.vrt, raster_format=output.format, overwrite=args.overwrite,
                                   only=None if args.outputs is None else args.outputs.split(","))
     if args.scheduler:
@@ -119,7 +119,7 @@ def _outside_the_cache(out: str) -> None:
 
     out, cache = os.path.realpath(out), os.path.realpath(default_cache())
     if out == cache or out.startswith(cache + os.sep):
-        raise ValueError(f"--out '{out}' is inside Hamta's cache folder '{cache}'; choose a folder outside it")
+        raise UsageError(f"--out '{out}' is inside Hamta's cache folder '{cache}'; choose a folder outside it")
 
 
 def cmd_batch(args) -> int:
@@ -128,7 +128,7 @@ def cmd_batch(args) -> int:
     from ..core.batch.task import BatchSettings
 
     if args.workers is not None and args.workers < 1:
-        raise ValueError(f"--workers must be at least 1 (default: the CPU count), got {args.workers}")
+        raise UsageError(f"--workers must be at least 1 (default: the CPU count), got {args.workers}")
     options, output = settings_from(args)
     _outside_the_cache(args.out)
     sheet_crs = args.sheet_crs or (output.crs if args.reference is None else None)  # as for one sheet: --crs
@@ -153,11 +153,11 @@ def cmd_map_points(args) -> int:
     from ..core.mapping import map_points_from_report
 
     if len(args.coords) % 2:
-        raise ValueError(f"map-points takes X Y pairs of target pixels; got {len(args.coords)} numbers")
+        raise UsageError(f"map-points takes X Y pairs of target pixels; got {len(args.coords)} numbers")
     try:
         values = [float(v) for v in args.coords]
     except ValueError:
-        raise ValueError("map-points takes numbers (X Y pairs of target pixels), got "
+        raise UsageError("map-points takes numbers (X Y pairs of target pixels), got "
                          f"{' '.join(args.coords)}") from None
     xy = [(values[i], values[i + 1]) for i in range(0, len(values), 2)]
     rows = map_points_from_report(args.report, xy)
@@ -310,7 +310,7 @@ def _main(argv) -> int:
     except HamtaError as exc:
         print(f"hamta: error: {explain(exc)}", file=sys.stderr)
         return EXIT_ERROR
-    except (ValueError, argparse.ArgumentTypeError) as exc:
+    except (UsageError, argparse.ArgumentTypeError) as exc:
         print(f"hamta: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except Exception as exc:  # a bug: say so plainly, without a traceback

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import re
 
+from ..core.errors import UsageError
 from ..core.options import OutputOptions, RegisterOptions, cli_flag, option_fields, option_type
 
 OPTION_CLASSES = (RegisterOptions, OutputOptions)
@@ -41,7 +42,7 @@ def settings_from(args: argparse.Namespace):
     try:
         return build(RegisterOptions), build(OutputOptions)
     except ValueError as exc:
-        raise ValueError(in_flags(str(exc))) from None
+        raise UsageError(in_flags(str(exc))) from None
 
 
 def in_flags(message: str) -> str:

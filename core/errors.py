@@ -17,6 +17,12 @@ class HamtaError(Exception):
     option = None
 
 
+class UsageError(ValueError):
+    """A value of the command line or of a run's parameters that cannot be used (an unknown method or option, a
+    number out of range, a malformed search area), found while they are checked, before any work. Any other
+    exception during a run is an internal error (a bug), not the user's."""
+
+
 class InputError(HamtaError, ValueError):
     """An input raster is missing, unreadable, empty, constant or of an unsupported type."""
 

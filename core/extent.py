@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Optional, Tuple
 
-from .errors import InputError
+from .errors import InputError, UsageError
 
 
 @dataclass(frozen=True)
@@ -35,16 +35,16 @@ def parse_extent(text: str) -> Extent:
     usage = (f"the search area '{text}' must be xmin,ymin,xmax,ymax with an optional CRS after a comma, "
              "e.g. 10.70,59.90,10.80,59.95,EPSG:4326")
     if len(parts) not in (4, 5):
-        raise ValueError(usage)
+        raise UsageError(usage)
     try:
         xmin, ymin, xmax, ymax = (float(p) for p in parts[:4])
     except ValueError:
-        raise ValueError(usage) from None
+        raise UsageError(usage) from None
     if not all(abs(v) <= MAX_COORDINATE for v in (xmin, ymin, xmax, ymax)):  # nan and inf too
-        raise ValueError(f"the search area '{text}' has a coordinate beyond any map (above {MAX_COORDINATE:g} map "
+        raise UsageError(f"the search area '{text}' has a coordinate beyond any map (above {MAX_COORDINATE:g} map "
                          "units)")
     if not (xmin < xmax and ymin < ymax):
-        raise ValueError(f"the search area '{text}' is empty: xmin must be below xmax and ymin below ymax")
+        raise UsageError(f"the search area '{text}' is empty: xmin must be below xmax and ymin below ymax")
     crs = parts[4] if len(parts) == 5 and parts[4] else None
     if crs is not None:
         _crs(crs, text)
@@ -58,7 +58,7 @@ def _crs(crs: str, text: str):
     try:
         return CRS.from_user_input(crs)
     except CRSError:
-        raise ValueError(f"the search area '{text}' names a CRS PROJ does not know: {crs!r}") from None
+        raise UsageError(f"the search area '{text}' names a CRS PROJ does not know: {crs!r}") from None
 
 
 def bounds_in(extent: Extent, crs, default_crs) -> Tuple[float, float, float, float]:

@@ -23,7 +23,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from .errors import InsufficientMatchesError
+from .errors import InsufficientMatchesError, UsageError
 from .estimation.models import ThinPlateSplineModel
 from .estimation.robust import Estimate, FinalFit
 from .progress import Monitor
@@ -67,11 +67,11 @@ class LocalParams:
 
     def __post_init__(self):
         if self.window_px < 16:
-            raise ValueError(f"local window_px must be at least 16, got {self.window_px}")
+            raise UsageError(f"local window_px must be at least 16, got {self.window_px}")
         if not (math.isfinite(self.spacing_px) and self.spacing_px >= 0):
-            raise ValueError(f"local spacing_px must be 0 (automatic) or positive, got {self.spacing_px}")
+            raise UsageError(f"local spacing_px must be 0 (automatic) or positive, got {self.spacing_px}")
         if self.max_points < 10 or self.search_px < 1 or self.neighbours < 3:
-            raise ValueError("local max_points must be >= 10, search_px >= 1 and neighbours >= 3")
+            raise UsageError("local max_points must be >= 10, search_px >= 1 and neighbours >= 3")
 
 
 @dataclass(frozen=True, eq=False)

@@ -12,7 +12,7 @@ import numpy as np
 from affine import Affine
 
 from .coords import as_xy, pixel_to_map
-from .errors import InputError
+from .errors import InputError, UsageError
 from .estimation.models import model_from_dict
 
 
@@ -47,7 +47,7 @@ def map_points_from_report(report_path: str, target_px) -> list:
     model, transform, pixel_mode = load_report_model(report_path)
     xy = as_xy(target_px)
     if not np.isfinite(xy).all():
-        raise ValueError("target pixel coordinates must be finite numbers")
+        raise UsageError("target pixel coordinates must be finite numbers")
     try:
         with np.errstate(all="ignore"):
             ref_px = model.apply(xy)

@@ -21,6 +21,8 @@ from dataclasses import dataclass, field, fields, replace
 from functools import lru_cache
 from typing import Mapping, Optional, Tuple
 
+from .errors import UsageError
+
 
 @dataclass(frozen=True)
 class Choice:
@@ -41,7 +43,7 @@ class Choice:
         key = str(value).lower()
         key = (self.aliases or {}).get(key, key)
         if key not in self.labels:
-            raise ValueError(f"unknown {self.name} {value!r}; choose one of {', '.join(self.values)}")
+            raise UsageError(f"unknown {self.name} {value!r}; choose one of {', '.join(self.values)}")
         return key
 
     def index(self, value: str) -> int:
@@ -50,7 +52,7 @@ class Choice:
     def at(self, index: int) -> str:
         """The value at an enum ``index`` (as Processing passes it)."""
         if not 0 <= int(index) < len(self.values):
-            raise ValueError(f"{self.name} index {index} is out of range 0..{len(self.values) - 1}")
+            raise UsageError(f"{self.name} index {index} is out of range 0..{len(self.values) - 1}")
         return self.values[int(index)]
 
 
@@ -128,7 +130,7 @@ def canonical_model(name: str) -> str:
     """Validate a model name (QGIS-style aliases accepted) and return its canonical spelling."""
     kind = MODEL.check(name)
     if kind == MODEL.open_value:
-        raise ValueError(f"{name!r} leaves the model to the method and the check; a fit needs one of "
+        raise UsageError(f"{name!r} leaves the model to the method and the check; a fit needs one of "
                          f"{', '.join(MODEL_CHOICES)}")
     return kind
 
@@ -211,7 +213,7 @@ def _flag(name: str, value) -> bool:
         return bool(value)
     if isinstance(value, str) and value.lower() in FLAG_WORDS:
         return FLAG_WORDS[value.lower()]
-    raise ValueError(f"{name} must be true or false, got {value!r}")
+    raise UsageError(f"{name} must be true or false, got {value!r}")
 
 
 def cli_flag(f, spec: Option) -> str:
@@ -237,7 +239,7 @@ def check_options(options) -> None:
             _whole(f.name, value, int(spec.minimum or 0))
         elif kind is float and spec.minimum is None:
             if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise ValueError(f"{f.name} must be a number, got {value!r}")
+                raise UsageError(f"{f.name} must be a number, got {value!r}")
         elif kind is float:
             _number(f.name, value, positive=spec.above)
 
@@ -322,13 +324,13 @@ class RegisterOptions:
 
 def _whole(name: str, value, minimum: int) -> None:
     if isinstance(value, bool) or not isinstance(value, int) or value < minimum:
-        raise ValueError(f"{name} must be a whole number of at least {minimum}, got {value!r}")
+        raise UsageError(f"{name} must be a whole number of at least {minimum}, got {value!r}")
 
 
 def _number(name: str, value, positive: bool) -> None:
     ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
     if not ok or value < 0 or (positive and value == 0):
-        raise ValueError(f"{name} must be a finite number {'above' if positive else 'of at least'} 0, got {value!r}")
+        raise UsageError(f"{name} must be a finite number {'above' if positive else 'of at least'} 0, got {value!r}")
 
 
 def resolve_options(options: RegisterOptions, method) -> RegisterOptions:
@@ -373,7 +375,7 @@ class OutputOptions:
         object.__setattr__(self, "creation_options", tuple(self.creation_options))
         for item in self.creation_options:
             if "=" not in item or not item.split("=", 1)[0].strip():
-                raise ValueError(f"creation options are KEY=VALUE, got {item!r}")
+                raise UsageError(f"creation options are KEY=VALUE, got {item!r}")
         if self.crs is not None:
             from rasterio.crs import CRS
             from rasterio.errors import CRSError
@@ -381,4 +383,4 @@ class OutputOptions:
             try:
                 CRS.from_user_input(self.crs)
             except CRSError as exc:
-                raise ValueError(f"crs: {self.crs!r} is not a coordinate reference system GDAL knows ({exc})") from None
+                raise UsageError(f"crs: {self.crs!r} is not a coordinate reference system GDAL knows ({exc})") from None

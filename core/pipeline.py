@@ -15,7 +15,7 @@ from typing import Optional, Tuple
 
 from .auto import AUTO, chain_for, register_auto
 from .coords import pixel_to_map
-from .errors import ReferenceNotGeoreferenced, method_crashes
+from .errors import ReferenceNotGeoreferenced, UsageError, method_crashes
 from .estimation.framed import CrsFrame
 from .estimation.robust import RobustRules, final_fit, robust_linear
 from .io.raster import RasterInfo, check_on_earth, open_raster, resolve_bands
@@ -86,7 +86,7 @@ def register(target, reference, method: str = AUTO, params=None, options: Regist
     rest = monitor.span(0.1, 1.0)
     if method == AUTO:
         if params:
-            raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
+            raise UsageError("method 'auto' takes no method parameters; choose a method to set them")
         return _unplaced(_register_by_auto(inputs, options, rest, map_chunks, short), placed, target)
     params = get_method(method).make_params(params)  # a wrong name or parameter is the caller's, not a crash
     with method_crashes(method):

@@ -21,7 +21,7 @@ from rasterio.windows import Window
 
 from .coords import as_xy, xy_bounds
 from .descriptors.cfog import ncc_surface
-from .errors import InsufficientMatchesError
+from .errors import InsufficientMatchesError, UsageError
 from .estimation.models import LinearModel
 from .estimation.robust import Estimate, RobustRules, robust_linear
 from .estimation.spread import spread_subset
@@ -69,9 +69,9 @@ class RefineParams:
 
     def __post_init__(self):
         if self.points not in ("matches", "grid"):
-            raise ValueError(f"refinement points must be 'matches' or 'grid', got {self.points!r}")
+            raise UsageError(f"refinement points must be 'matches' or 'grid', got {self.points!r}")
         if self.similarity not in ("ncc", "cfog"):
-            raise ValueError(f"refinement similarity must be 'ncc' or 'cfog', got {self.similarity!r}")
+            raise UsageError(f"refinement similarity must be 'ncc' or 'cfog', got {self.similarity!r}")
 
 
 POINTS_PER_REPORT = 32  # points refined between two progress reports

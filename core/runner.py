@@ -13,7 +13,7 @@ import time
 from typing import Dict, Optional, Tuple
 
 from .auto import AUTO
-from .errors import OutputError, Refused, UnverifiedResult
+from .errors import OutputError, Refused, UnverifiedResult, UsageError
 from .io.raster import input_files, open_raster
 from .io.scope import run_scope
 from .methods import get_method
@@ -61,7 +61,7 @@ def run(target, reference, paths: Optional[OutputPaths] = None, *, method: str =
         params = GridParams.make(params, output)  # the hints and the sheet's CRS, checked before any work
     elif method == AUTO:
         if params:
-            raise ValueError("method 'auto' takes no method parameters; choose a method to set them")
+            raise UsageError("method 'auto' takes no method parameters; choose a method to set them")
     else:
         get_method(method).make_params(params)  # a wrong name or parameter fails before any work
     reference = None if by_grid else resolve_reference(reference)

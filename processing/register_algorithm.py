@@ -6,6 +6,8 @@ import dataclasses
 import re
 
 from qgis.core import (
+    Qgis,
+    QgsMessageLog,
     QgsProcessing,
     QgsProcessingAlgorithm,
     QgsProcessingException,
@@ -26,7 +28,7 @@ from qgis.PyQt.QtCore import QCoreApplication
 from ..core import RegisterOptions, UnverifiedResult, run
 from ..core.advice import advice
 from ..core.auto import AUTO
-from ..core.errors import HamtaError, MethodCrashed, Refused, RegistrationCanceled
+from ..core.errors import HamtaError, MethodCrashed, Refused, RegistrationCanceled, UsageError
 from ..core.methods import get_method
 from ..core.options import LABEL_CHARS, option_fields, resolve_options
 from ..core.outcome import attempt_lines
@@ -228,6 +230,21 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
                 v[key] = self.parameterAsString(parameters, key, context)
         return v
 
+    def _unexpected(self, exc: Exception) -> QgsProcessingException:
+        """A bug, said as one: a clear message naming it (the method, where a method raised), its traceback in
+        the log, never a raw traceback in the dialog."""
+        import traceback
+
+        QgsMessageLog.logMessage("".join(traceback.format_exception(type(exc), exc, exc.__traceback__)), "Hamta",
+                                 Qgis.Critical)
+        kind, cause = type(exc).__name__, exc
+        if isinstance(exc, MethodCrashed):
+            cause = exc.__cause__
+            kind = f"{type(cause).__name__} in method '{exc.method}'"
+        message = self.tr("Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it "
+                          "(the traceback is in the log, tab Hamta).")
+        return QgsProcessingException(message.format(kind, cause))
+
     def processAlgorithm(self, parameters, context, feedback):
         target = self._raster_path(parameters, self.TARGET, context)
         values = self._values(parameters, context)
@@ -235,8 +252,10 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
         try:
             reference = self._reference(parameters, context, options, target)
             params = self._run_arguments(values, output)
-        except (HamtaError, ValueError) as exc:
+        except (HamtaError, UsageError) as exc:
             raise QgsProcessingException(self.explain(exc) if isinstance(exc, HamtaError) else str(exc)) from None
+        except Exception as exc:
+            raise self._unexpected(exc) from None
         if paths.gpkg and not paths.gpkg.lower().endswith(".gpkg"):
             raise QgsProcessingException(self.tr("GCP points are written to a GeoPackage: choose a .gpkg file (got "
                                                  "'{}').").format(values[self.GCP_LAYER]))
@@ -259,15 +278,10 @@ class RegisterAlgorithm(PlainNumbers, QgsProcessingAlgorithm):
                 "results' to write it anyway.").format("; ".join(exc.result.verification.reasons))) from None
         except HamtaError as exc:
             raise QgsProcessingException(self.explain(exc)) from None
-        except ValueError as exc:
+        except UsageError as exc:
             raise QgsProcessingException(self.tr("Invalid parameter: {}").format(exc)) from None
-        except Exception as exc:  # a bug: a clear message, never a raw traceback in the dialog
-            kind, cause = type(exc).__name__, exc
-            if isinstance(exc, MethodCrashed):  # a bug inside a method: name it
-                cause = exc.__cause__
-                kind = f"{type(cause).__name__} in method '{exc.method}'"
-            message = self.tr("Hamta stopped on an unexpected error ({}: {}); no output was written. Please report it.")
-            raise QgsProcessingException(message.format(kind, cause)) from None
+        except Exception as exc:
+            raise self._unexpected(exc) from None
         self._log(result, feedback)
         s = result.stats
         layer = written.get("gpkg")

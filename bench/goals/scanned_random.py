@@ -48,7 +48,7 @@ def run_unit(unit, config) -> list:
            "time_s": 0.0, "peak_mb": 0.0, "why": ""}
     hints = sheet.hints(k, seed) if k else None
     if k and (spec.style == "none" or len(nodes) < k):
-        return [dict(row, why="no crossings to hint")]
+        return [dict(row, why="no crossings to hint", confident_wrong=False)]
     t0 = time.perf_counter()
     with PeakRss() as peak:
         try:
@@ -56,6 +56,8 @@ def run_unit(unit, config) -> list:
                             output=OutputOptions(), accept_unverified=True)
         except HamtaError as exc:
             result, row["verdict"], row["why"] = None, "refused", str(exc)[:200]
+        except Exception as exc:  # a bug: counted, and the other sheets still run
+            result, row["verdict"], row["why"] = None, "crashed", f"{type(exc).__name__}: {exc}"[:200]
     row["time_s"], row["peak_mb"] = time.perf_counter() - t0, peak.peak
     if result is not None:
         row["verdict"] = result.verification.verdict
@@ -91,16 +93,25 @@ def tables(rows) -> list:
             rms = [r["rms_px"] for r in right]
             body.append([style, len(mine), sum(r["labelled"] for r in mine), len(right),
                          sum(r["confident_wrong"] for r in mine), sum(r["verdict"] == "refused" for r in mine),
-                         sum(r["verdict"] not in ("verified", "refused") for r in mine),
+                         sum(r["verdict"] not in ("verified", "refused", "crashed") for r in mine),
+                         sum(r["verdict"] == "crashed" for r in mine),
                          "–" if not rms else f"{np.median(rms):.2f}",
                          f"{np.median([r['time_s'] for r in mine]):.1f}", f"{max(r['time_s'] for r in mine):.0f}",
                          f"{max(r['peak_mb'] for r in mine):.0f}"])
         if body:
             out.append({"title": f"scanned, random sheets: {title}", "rows": body,
                         "columns": ["grid printed as", "sheets", "labelled", "verified right", "confident wrong",
-                                    "refused", "suspect/unverified", "median RMS px", "median s", "max s",
+                                    "refused", "suspect/unverified", "crashed", "median RMS px", "median s", "max s",
                                     "max peak MB"],
                         "note": "RMS over every crossing on the sheet (exact truth), scan px; right within 2 px."})
+    odd = [r for r in rows if r.get("confident_wrong") or r["verdict"] in ("suspect", "failed", "crashed")]
+    if odd:
+        out.append({"title": "scanned, random sheets: every confident wrong, suspect, not verified or crashed run",
+                    "columns": ["seed", "hints", "grid printed as", "printed in", "verdict", "RMS px", "why"],
+                    "rows": [[r["seed"], r["hints"], r["style"], r["printed"], r["verdict"],
+                              "–" if r["rms_px"] is None else f"{r['rms_px']:.2f}", r["why"][:120]]
+                             for r in sorted(odd, key=lambda r: (r["seed"], r["hints"]))],
+                    "note": "hamta.bench.random_sheets.render_random(seed, ...) draws the sheet again."})
     return out
 
 

@@ -41,21 +41,27 @@ class AreaReader:
         :class:`ServiceError` past the budget or when the service fails."""
         if self.known is None:
             return self._first(bounds, z, monitor)
-        return self._read(bounds, self.zoom_for(bounds, z), monitor)
+        return self._read(bounds, self.learn_finest(bounds, z), monitor)
 
-    def zoom_for(self, bounds, z: int) -> int:
-        """``z``, or the layer's finest zoom where that is coarser: learned with a few requests over the data
-        nearest ``bounds``'s centre the first time a zoom finer than any read before is asked for."""
+    def learn_finest(self, bounds, z: int) -> int:
+        """The zoom an area of ``bounds`` asked at ``z`` is read at (:meth:`zoom_for`), once the layer's finest
+        zoom is learned where ``z`` is finer than any read before (an XYZ layer: a few requests over the data
+        nearest ``bounds``'s centre, counted in the plan)."""
         z = min(z, self.finest)
         if self.known is not None and z > self.known and self.service.kind == "xyz":
             point = self.coverage.nearest_data(*_centre(bounds)) or _centre(bounds)
             self.planned += PROBES
             self.finest = self.known = finest_zoom(self.service, self.fetcher, point, self.known, self.finest)
+        return self.zoom_for(z)
+
+    def zoom_for(self, z: int) -> int:
+        """``z``, or the finest zoom the layer is known to have where that is coarser (nothing is asked)."""
         return min(z, self.finest)
 
     def cost(self, bounds, z: int) -> int:
-        """The requests reading ``bounds`` at zoom ``z`` would add to the plan."""
-        tiles, wanted = self._tiles(bounds, self.zoom_for(bounds, z))
+        """The requests reading ``bounds`` at zoom ``z`` (:meth:`zoom_for`: as far as the layer is known) would
+        add to the plan."""
+        tiles, wanted = self._tiles(bounds, self.zoom_for(z))
         return 0 if _range_key(tiles, wanted) in self.read_before else _count(tiles, wanted)
 
     def plain(self, exc: BaseException) -> str:

@@ -24,7 +24,7 @@ import uuid
 from dataclasses import dataclass, field
 from typing import Callable, List, Optional
 
-from ..errors import HamtaError, InputError, RegistrationCanceled
+from ..errors import HamtaError, InputError, RegistrationCanceled, UsageError
 from ..progress import Monitor
 from .jobs import Job
 from .task import BatchSettings, failed_record, finished_record, register_job
@@ -68,7 +68,7 @@ def run_batch(jobs: List[Job], settings: BatchSettings = BatchSettings(), *, sch
     """Register every job; see the module docstring. ``workers`` sizes the local cluster (default:
     the CPU count); ``processes=False`` runs its workers as threads of this process (inside QGIS)."""
     if workers is not None and workers < 1:
-        raise ValueError(f"workers must be a whole number of at least 1 (default: the CPU count), got {workers!r}")
+        raise UsageError(f"workers must be a whole number of at least 1 (default: the CPU count), got {workers!r}")
     monitor = Monitor(progress, is_canceled)
     t0 = time.perf_counter()
     records = {j.key: finished_record(j, settings) for j in jobs}

@@ -173,10 +173,10 @@ def _join(a: Label, b: Label) -> Optional[Label]:
     below = 0.6 * size <= dy <= 1.8 * size and abs(dx) <= 2.5 * size
     if not (beside or below) or abs(math.log(max(a.glyph_px, 1) / max(b.glyph_px, 1))) > math.log(2.0):
         return None
-    text = f"{a.text} {b.text}"
-    if beside and a.number is not None and b.number is not None and b.digits <= 3 and \
-            len(normalised(b.text)) == 3 and dx <= 0.6 * size * (len(normalised(a.text)) + 4):  # 1742 500: the
-        digits = normalised(a.text) + normalised(b.text)  # thousands printed apart
+    text, first, second = f"{a.text} {b.text}", "".join(a.text.split()), "".join(b.text.split())
+    if beside and a.number is not None and b.number is not None and first.isdigit() and second.isdigit() and \
+            len(second) == 3 and dx <= 0.6 * size * (len(first) + 4):  # 1742 500: the thousands printed apart
+        digits = first + second
         return replace(a, text=text, number=float(digits), digits=len(digits.lstrip("0")) or 1, xy=_centre(a, b),
                        confidence=min(a.confidence, b.confidence))
     if a.degrees is not None and a.minutes is None and b.degrees is None and b.minutes is not None:

@@ -58,7 +58,7 @@ def crossing(source, xy, directions, radius: float, along=None) -> Optional[Cros
         if profile is None:
             return None
         offsets = (np.arange(len(profile)) - (len(profile) - 1) / 2) / STEPS_PER_PX
-        peak = _profile_peak(profile * np.exp(-0.5 * (offsets / radius) ** 2))  # the nearer of two lines
+        peak = _profile_peak(profile, np.exp(-0.5 * (offsets / radius) ** 2))  # the nearer of two lines
         if peak is None:
             return None
         found.append((peak[0] - (len(profile) - 1) / 2) / STEPS_PER_PX)
@@ -95,12 +95,15 @@ def _strip(lines, xy, direction, along: float, radius: float):
     return np.median(values, axis=1) + values.mean(axis=1)
 
 
-def _profile_peak(profile: np.ndarray):
+def _profile_peak(profile: np.ndarray, weights: np.ndarray):
     """(the index of the profile's peak, to a fraction, its prominence and its height above the median) or
-    None."""
+    None: the peak of ``profile`` that ``weights`` favour (the nearer of two lines), climbed to the profile's own
+    top, whose prominence is the profile's own (weights make a peak of any ink, a line's or none)."""
     median = np.median(profile)
     spread = np.median(np.abs(profile - median)) * 1.4826 + 1e-6
-    i = int(np.argmax(profile))
+    i = int(np.argmax(profile * weights))
+    while 0 < i < len(profile) - 1 and max(profile[i - 1], profile[i + 1]) > profile[i]:
+        i += 1 if profile[i + 1] > profile[i - 1] else -1
     prominence = (profile[i] - median) / spread
     if prominence < PROMINENCE or i == 0 or i == len(profile) - 1:
         return None

@@ -23,7 +23,7 @@ import numpy as np
 from affine import Affine
 from rasterio.windows import Window
 
-from ..errors import HamtaError, InputError, OutputError, Refused, RegistrationCanceled
+from ..errors import HamtaError, InputError, OutputError, Refused, RegistrationCanceled, UsageError
 from ..io.raster import open_raster, resolve_bands
 from ..io.scope import run_scope
 from ..io.working import Plan
@@ -61,7 +61,7 @@ class GridParams:
         params = dict(params or {})
         unknown = sorted(set(params) - set(PARAMS))
         if unknown:
-            raise ValueError(f"georeferencing by the grid takes no parameter {', '.join(unknown)}; it takes "
+            raise UsageError(f"georeferencing by the grid takes no parameter {', '.join(unknown)}; it takes "
                              f"{', '.join(PARAMS)}")
         sheet_crs = params.get("sheet_crs") or getattr(output, "crs", None)
         if not sheet_crs:
@@ -77,7 +77,7 @@ class GridParams:
         elif not isinstance(hints, str):  # rows: kept as plain numbers (a run's request is JSON)
             hints = np.asarray(hints, float).reshape(-1, 4).tolist()
         if step not in (None, "") and not float(step) > 0:
-            raise ValueError(f"step must be a positive number of the sheet CRS's units, got {step!r}")
+            raise UsageError(f"step must be a positive number of the sheet CRS's units, got {step!r}")
         return cls(hints, str(sheet_crs), None if step in (None, "") else float(step))
 
 

@@ -9,6 +9,9 @@ from __future__ import annotations
 
 import math
 from itertools import zip_longest
+from typing import Optional
+
+import numpy as np
 
 from ..descriptors import xfeat
 from ..io.raster import read_image, resolve_bands
@@ -35,6 +38,8 @@ STRUCTURE_MIN_SIDE = 96  # px: the least target side (in area pixels) its struct
 STRUCTURE_DISTINCT = 1.2  # a structure place scoring this many times the next one apart is registered before the
 STRUCTURE_STRONG = 10.0  # whole area, when it also scores this much (right places scored 12.9-27 and 1.2-2.7 times
 # the next on the basemap-real family's areas; the wrong best ones at most 1.19 times, most of them 1.01-1.15)
+PLACE_SIDES = (16, 4.0)  # a place's footprint, its longer side: at least 16 area px (fewer hold no features to
+# register with) and at most 4 times the area's longer side (a target that large is not in the area)
 LEARNED_TARGET_K = 1024  # strongest XFeat keypoints of each turned target (384 px) and of each 1024 px block of an area
 LEARNED_AREA_K = 2048
 
@@ -82,17 +87,21 @@ def candidates(target, learned, image, valid, whole: bool, structure=None):
     :data:`LEARNED_STRONG_INLIERS`; the whole area (when ``whole``); then the weaker places, the best of each
     first. Lazy: the structure is correlated only when SIFT's strong places did not verify, XFeat only when
     neither did."""
-    sift = [c for c in locate(target[0], target[1], *features(image, valid), target[2])
-            if c.inliers >= MIN_INLIERS][:CANDIDATES]
+    def sound(found):
+        return [c for c in found if placement_problem(c, target[2], image.shape[:2]) is None]
+
+    sift = sound(c for c in locate(target[0], target[1], *features(image, valid), target[2])
+                 if c.inliers >= MIN_INLIERS)[:CANDIDATES]
     yield from (("SIFT", c) for c in sift if c.inliers >= STRONG_INLIERS)
-    shaped = structure_places(*structure[:2], image, valid, structure[2]) if structure is not None else []
+    shaped = sound(structure_places(*structure[:2], image, valid, structure[2])) if structure is not None else []
     strong = [c for i, c in enumerate(shaped) if i == 0 and c.score >= STRUCTURE_STRONG and (
         len(shaped) == 1 or c.score >= STRUCTURE_DISTINCT * shaped[1].score)]
     yield from (("structure", c) for c in strong)
     xf = []
     if learned is not None:
         area = xfeat.features(image, valid, LEARNED_AREA_K, block=1024)
-        xf = [c for c in learned_locate(learned(), area, target[2]) if c.inliers >= LEARNED_MIN_INLIERS][:CANDIDATES]
+        xf = sound(c for c in learned_locate(learned(), area, target[2])
+                   if c.inliers >= LEARNED_MIN_INLIERS)[:CANDIDATES]
         yield from (("XFeat", c) for c in xf if c.inliers >= LEARNED_STRONG_INLIERS)
     if whole:
         yield None, None
@@ -100,6 +109,24 @@ def candidates(target, learned, image, valid, whole: bool, structure=None):
             [("structure", c) for c in shaped[len(strong):]],
             [("XFeat", c) for c in xf if c.inliers < LEARNED_STRONG_INLIERS]]
     yield from (step for rank in zip_longest(*weak) for step in rank if step is not None)
+
+
+def placement_problem(c, target_shape, area_shape) -> Optional[str]:
+    """Why candidate ``c`` (target working px of ``target_shape`` -> area px of ``area_shape``, both (rows,
+    columns)) places nothing, or None: a matrix not finite, flat or mirrored (both spaces have rows running
+    down), or a footprint outside :data:`PLACE_SIDES`."""
+    m = np.asarray(c.matrix, float)
+    if m.shape != (2, 3) or not np.isfinite(m).all():
+        return "its placement is not a finite 2 x 3 matrix"
+    with np.errstate(over="ignore", invalid="ignore"):
+        det = float(np.linalg.det(m[:, :2]))
+    if not det > 0:
+        return "its placement is flat or mirrored"
+    side = math.sqrt(det) * max(target_shape)
+    least, most = PLACE_SIDES
+    if not least <= side <= most * max(area_shape):
+        return f"its footprint would be {side:.0f} area px across"
+    return None
 
 
 def seen(placed, width: int, height: int, places) -> bool:

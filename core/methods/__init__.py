@@ -14,6 +14,7 @@ import pkgutil
 from importlib import import_module
 from typing import Dict
 
+from ..errors import UsageError
 from .registry import _ALIASES, _REGISTRY, Method, Toolbox, match_with, param, register_method, validate
 
 __all__ = ["Method", "Toolbox", "param", "validate", "match_with", "register_method", "get_method", "all_methods",
@@ -36,7 +37,7 @@ def get_method(name: str) -> Method:
     try:
         return _REGISTRY[_ALIASES.get(name, name)]
     except KeyError:
-        raise ValueError(f"unknown method {name!r}; available: {', '.join(all_methods())}") from None
+        raise UsageError(f"unknown method {name!r}; available: {', '.join(all_methods())}") from None
 
 
 def method_aliases() -> Dict[str, str]:

@@ -10,6 +10,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Mapping, Optional
 
+from ..errors import UsageError
 from ..matching.nearest import match_features
 from ..progress import Monitor
 from ..refine import RefineParams
@@ -112,7 +113,7 @@ class Method:
         fields = {f.name: f for f in dataclasses.fields(self.params_type)}
         unknown = sorted(set(values) - set(fields))
         if unknown:
-            raise ValueError(f"method {self.name!r} has no parameter(s) {', '.join(unknown)}; "
+            raise UsageError(f"method {self.name!r} has no parameter(s) {', '.join(unknown)}; "
                              f"known: {', '.join(fields)}")
         converted = {k: _convert(fields[k], v) for k, v in values.items()}
         return self.params_type(**converted)
@@ -127,15 +128,15 @@ def _convert(field: dataclasses.Field, value):
             return True
         if value.lower() in ("0", "false", "no", "off"):
             return False
-        raise ValueError(f"parameter {field.name} expects true/false, got {value!r}")
+        raise UsageError(f"parameter {field.name} expects true/false, got {value!r}")
     if kind in (int, float):
         try:
             number = float(value)
         except ValueError:
-            raise ValueError(f"parameter {field.name} expects a number, got {value!r}") from None
+            raise UsageError(f"parameter {field.name} expects a number, got {value!r}") from None
         if kind is int:
             if not math.isfinite(number) or number != int(number):
-                raise ValueError(f"parameter {field.name} expects a whole number, got {value!r}")
+                raise UsageError(f"parameter {field.name} expects a whole number, got {value!r}")
             return int(number)
         return number
     return value
@@ -157,17 +158,17 @@ def validate(params) -> None:
         lo, hi, choices = f.metadata.get("minimum"), f.metadata.get("maximum"), f.metadata.get("choices")
         kind = type(f.default)
         if kind in (int, float) and (isinstance(v, bool) or not isinstance(v, (int, float))):
-            raise ValueError(f"parameter {f.name} expects a number, got {v!r}")
+            raise UsageError(f"parameter {f.name} expects a number, got {v!r}")
         if kind is int and isinstance(v, float):
-            raise ValueError(f"parameter {f.name} expects a whole number, got {v!r}")
+            raise UsageError(f"parameter {f.name} expects a whole number, got {v!r}")
         if kind in (int, float) and not math.isfinite(v):
-            raise ValueError(f"parameter {f.name} must be a finite number, got {v}")
+            raise UsageError(f"parameter {f.name} must be a finite number, got {v}")
         if lo is not None and v < lo:
-            raise ValueError(f"parameter {f.name} must be >= {lo}, got {v}")
+            raise UsageError(f"parameter {f.name} must be >= {lo}, got {v}")
         if hi is not None and v > hi:
-            raise ValueError(f"parameter {f.name} must be <= {hi}, got {v}")
+            raise UsageError(f"parameter {f.name} must be <= {hi}, got {v}")
         if choices is not None and v not in choices:
-            raise ValueError(f"parameter {f.name} must be one of {choices}, got {v!r}")
+            raise UsageError(f"parameter {f.name} must be one of {choices}, got {v!r}")
 
 
 def match_with(features_fn: Callable, stage: str = "keypoints and descriptors") -> Callable:

@@ -15,7 +15,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, fields
 from typing import Dict, Iterable, Optional, Tuple
 
-from ..errors import ForeignFiles, OutputError
+from ..errors import ForeignFiles, OutputError, UsageError
 from ..io.scope import release_datasets
 from ..options import OutputOptions
 from ..progress import Monitor
@@ -68,7 +68,7 @@ class OutputPaths:
         names = tuple(n.strip().lower() for n in names if n.strip())
         unknown = sorted(set(names) - set(cls.LAYOUT))
         if unknown or not names:
-            raise ValueError(f"unknown output(s) {', '.join(unknown) or '(none given)'}; choose from "
+            raise UsageError(f"unknown output(s) {', '.join(unknown) or '(none given)'}; choose from "
                              f"{', '.join(cls.LAYOUT)}")
         return names
 

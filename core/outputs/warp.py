@@ -35,7 +35,7 @@ from rasterio.warp import transform as transform_points
 from rasterio.windows import Window
 
 from ..coords import as_xy, compose, raster_outline
-from ..errors import OutputError
+from ..errors import OutputError, UsageError
 from ..estimation.models import local_jacobian
 from ..io.raster import numpy_dtype, placeholder_crs
 from ..options import FORMAT, PIXEL_GRID, RESAMPLING, OutputOptions
@@ -84,21 +84,21 @@ def check_output_options(output: OutputOptions, target, path: str) -> None:
     :class:`~hamta.core.io.raster.RasterInfo`). Raises ``ValueError`` naming the option."""
     fmt = output_format(path, output.format)
     if output.pixel_grid == "target" and (fmt == "vrt" or output.crs is not None or output.resolution is not None):
-        raise ValueError("the output grid 'target' keeps the target's pixels in the reference CRS: it takes no "
+        raise UsageError("the output grid 'target' keeps the target's pixels in the reference CRS: it takes no "
                          "output CRS or resolution, and is written as GeoTIFF or COG, not VRT")
     if output.creation_options and fmt == "vrt":
-        raise ValueError("creation options (--co) apply to the gtiff and cog formats, not to a warped VRT")
+        raise UsageError("creation options (--co) apply to the gtiff and cog formats, not to a warped VRT")
     if output.creation_options:
         problems = _gdal_complaints(fmt, _creation(COG_OPTIONS if fmt == "cog" else GTIFF_OPTIONS, output))
         if problems:
-            raise ValueError(f"creation options {', '.join(output.creation_options)}: GDAL's {fmt.upper()} driver "
+            raise UsageError(f"creation options {', '.join(output.creation_options)}: GDAL's {fmt.upper()} driver "
                              f"says: {'; '.join(problems)}")
     if output.fill == "nodata" and output.nodata is not None:
         kind = numpy_dtype(target.dtype if not target.is_complex else "float32")
         if np.issubdtype(kind, np.integer):
             info = np.iinfo(kind)
             if not (float(output.nodata).is_integer() and info.min <= output.nodata <= info.max):
-                raise ValueError(f"nodata {output.nodata:g} does not fit the pixel type of '{target.path}' "
+                raise UsageError(f"nodata {output.nodata:g} does not fit the pixel type of '{target.path}' "
                                  f"({kind.name}: whole numbers {info.min} to {info.max})")
 
 

@@ -209,3 +209,59 @@ def test_a_layer_with_data_everywhere_is_searched_within_the_requests(case, serv
     assert 0 < fetcher.stats.requests <= 100, fetcher.stats
     said = str(info.value)
     assert "Zoom 7 was not searched: its" in said and "of the 100 requests a search may send" in said, said
+
+
+BAD_PLACES = {  # what a faulty locator may hand over (target working px -> area px), and the outcome noted
+    "not finite": ([[np.nan, 0.0, 10.0], [0.0, 1.0, 10.0]], "not a finite 2 x 3 matrix"),
+    "infinite": ([[np.inf, 0.0, 10.0], [0.0, 1.0, 10.0]], "not a finite 2 x 3 matrix"),
+    "flat": ([[0.0, 0.0, 10.0], [0.0, 0.0, 10.0]], "flat or mirrored"),
+    "mirrored": ([[-0.2, 0.0, 300.0], [0.0, 0.2, 10.0]], "flat or mirrored"),
+    "a dot": ([[1e-9, 0.0, 10.0], [0.0, 1e-9, 10.0]], "footprint would be 0 area px"),
+    "the world": ([[1e6, 0.0, 10.0], [0.0, 1e6, 10.0]], "area px across"),
+}
+
+
+def test_no_candidate_ends_a_search(case, server, tmp_path, monkeypatch):
+    """Degenerate placements are refused as such, a place whose registration raises (a bug) is that place's
+    outcome, and the search goes on to the right place."""
+    found = remote.candidates
+    raised = []
+
+    def with_faults(target, learned, image, valid, whole, structure=None):
+        for matrix, _ in BAD_PLACES.values():
+            yield "SIFT", Candidate(np.array(matrix), 9, 9)
+        yield from found(target, learned, image, valid, whole, structure)
+
+    real = remote.register
+
+    def raising_once(*args, **kwargs):
+        if kwargs.get("placed") is not None and not raised:
+            raised.append(1)
+            raise ValueError("math domain error")
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(remote, "candidates", with_faults)
+    monkeypatch.setattr(remote, "register", raising_once)
+    result, _ = _search(case, server.xyz("sparse"), tmp_path, 30.0)
+    outcomes = [p["outcome"] for p in result.reference_service["places"]]
+    assert result.verified, result.notes
+    for (_, expected), outcome in zip(BAD_PLACES.values(), outcomes):
+        assert outcome.startswith("not tried: its ") and expected in outcome, outcomes
+    assert outcomes[len(BAD_PLACES)].startswith("failed: internal error (ValueError: math domain error)"), outcomes
+    assert outcomes[-1] == "verified"
+
+
+def test_a_locator_that_fails_ends_that_zoom_noted_not_the_search(case, server, tmp_path, monkeypatch):
+    found = remote.candidates
+    calls = []
+
+    def failing_first(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 1:
+            raise ZeroDivisionError("division by zero")
+        yield from found(*args, **kwargs)
+
+    monkeypatch.setattr(remote, "candidates", failing_first)
+    result, _ = _search(case, server.xyz("sparse"), tmp_path, 30.0)
+    assert any("failed: internal error (ZeroDivisionError" in n for n in result.notes), result.notes
+    assert len(calls) >= 2

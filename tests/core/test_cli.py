@@ -67,6 +67,28 @@ def test_errors_exit_nonzero_with_a_message(tmp_path, small_pair, capsys):
     assert rc == 2 and "unknown model" in capsys.readouterr().err
 
 
+def test_a_value_error_during_the_work_is_an_internal_error_not_a_usage_error(tmp_path, small_pair, monkeypatch,
+                                                                            capsys):
+    """Exit 2 says the command line was wrong, checked before any work; a ValueError from the work is a bug."""
+    from hamta.core import runner
+
+    def broken(*args, **kwargs):
+        raise ValueError("math domain error")
+
+    monkeypatch.setattr(runner, "register", broken)
+    args = ["register", "--reference", small_pair["reference"], "--target", small_pair["target"], "--out",
+            str(tmp_path / "o"), "--quiet"]
+    assert main(args) == 1
+    err = capsys.readouterr().err
+    assert "internal error (ValueError: math domain error)" in err and "HAMTA_DEBUG=1" in err, err
+    monkeypatch.setenv("HAMTA_DEBUG", "1")
+    with pytest.raises(ValueError, match="math domain error"):  # the traceback, for a report
+        main(args)
+    monkeypatch.delenv("HAMTA_DEBUG")
+    assert main(args + ["--param", "nonsense=1", "--method", "sift"]) == 2
+    assert "no parameter" in capsys.readouterr().err
+
+
 def test_former_method_name_still_works(tmp_path, demo_pair, capsys):
     out = tmp_path / "o"
     rc = main(["register", "--reference", demo_pair["reference"], "--target", demo_pair["target"], "--method",

@@ -65,6 +65,8 @@ def test_the_parts_of_one_label_printed_apart_are_joined():
     assert len(joined(list(far))) == 2  # too far apart to be one label
     sides = parse(word("91°", 100, 20, size), "top"), parse(word("48'", 140, 21, size), "left")
     assert len(joined(list(sides))) == 2  # read along different edges
+    scale = [parse(word(t, x, 20, size), "top") for t, x in (("1:", 600), ("100", 625), ("000", 665))]
+    assert sorted(lab.number for lab in joined(scale)) == [1.0, 100000.0]  # "1:" is no thousands of a number
 
 
 def labelled_sheet(width=1200, height=900, x0=150.0, px_per_minute=150.0, misread=None):

@@ -160,7 +160,7 @@ LAYERS = (
     ("core.matching",),
     ("core.refine", "core.verify"),
     ("core.local", "core.methods", "core.auto", "core.result", "core.advice", "core.order"),
-    ("core.pipeline", "core.mapping", "core.outputs"),
+    ("core.pipeline", "core.mapping", "core.outputs", "core.remote_places"),
     ("core.remote", "core.reference", "core.grid"),
     ("core.runner",),
     ("core.batch",),

@@ -1,8 +1,13 @@
 """Locating a small target in a large search area (:mod:`hamta.core.matching.locate`), and a layer's
 finest zoom found when a tile template does not say it."""
 
+import math
+
+import hypothesis.strategies as st
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis.extra.numpy import arrays
 
 from hamta.bench.synthetic import make_landscape
 from hamta.bench.tileserver import TileServer
@@ -10,7 +15,7 @@ from hamta.core.basemap.areas import AreaReader
 from hamta.core.basemap.fetch import Fetcher
 from hamta.core.basemap.services import parse_service
 from hamta.core.basemap.tiles import NoTiles
-from hamta.core.matching.locate import features, locate
+from hamta.core.matching.locate import Candidate, features, locate
 from tests.conftest import grey, turned_window
 
 
@@ -102,17 +107,35 @@ def test_a_search_holds_each_candidate_to_its_share_of_one_checks_risk(demo_pair
     import dataclasses
 
     from hamta.core import register
-    from hamta.core.remote import SEARCH_TRIES, _held_to_the_search
+    from hamta.core.remote_places import SEARCH_TRIES, held_to_the_search
 
     result = register(demo_pair["target"], demo_pair["reference"], "sift")
     v = dataclasses.replace(result.verification, look="grid", z_chance=1.0, z_mw=1.0)
     assert result.verified
     single = dataclasses.replace(result, verification=dataclasses.replace(v, chance=1e-5 / SEARCH_TRIES * 2))
-    held = _held_to_the_search(single)
+    held = held_to_the_search(single)
     assert held.verification.verdict == "suspect" and "checked up to" in held.verification.reasons[-1]
     strong = dataclasses.replace(result, verification=dataclasses.replace(v, chance=1e-5 / SEARCH_TRIES / 2))
-    assert _held_to_the_search(strong) is strong
+    assert held_to_the_search(strong) is strong
     by_shape = dataclasses.replace(v, chance=1.0, z_chance=1e-6 / SEARCH_TRIES / 1.5, z_mw=1e-3 / SEARCH_TRIES / 1.5)
-    assert _held_to_the_search(dataclasses.replace(result, verification=by_shape)).verified
+    assert held_to_the_search(dataclasses.replace(result, verification=by_shape)).verified
     second_look = dataclasses.replace(by_shape, look="structure")  # held to half the levels: not enough now
-    assert not _held_to_the_search(dataclasses.replace(result, verification=second_look)).verified
+    assert not held_to_the_search(dataclasses.replace(result, verification=second_look)).verified
+
+
+@settings(max_examples=300, deadline=None)
+@given(arrays(np.float64, (2, 3), elements=st.floats(allow_nan=True, allow_infinity=True, width=64)))
+def test_a_placement_is_sound_or_says_why_never_raises(matrix):
+    """Any 2 x 3 matrix a locator may make: refused with a reason, or a placement the search's seen-before test
+    and zoom choice can use (finite, positive scale)."""
+    from affine import Affine
+
+    from hamta.core.matching.places import placement_problem, seen
+
+    problem = placement_problem(Candidate(matrix, 9, 9), (288, 384), (1024, 1024))
+    if problem is None:
+        placed = Affine(*matrix.ravel()) * Affine.scale(0.5)
+        assert math.isfinite(math.log(math.sqrt(abs(placed.determinant))))
+        assert seen(placed, 768, 576, [placed])
+    else:
+        assert problem.startswith("its ")

@@ -89,6 +89,25 @@ def test_an_unexpected_error_is_wrapped(provider, pair, tmp_path, monkeypatch):
         _run("registersift", dict(TARGET=pair["target"], REFERENCE=pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
 
 
+def test_a_value_error_from_the_work_is_a_bug_not_an_invalid_parameter(provider, pair, tmp_path, monkeypatch):
+    import hamta.processing.register_algorithm as alg
+
+    def broken(*args, **kwargs):
+        raise ValueError("math domain error")
+
+    monkeypatch.setattr(alg, "run", broken)
+    with pytest.raises(QgsProcessingException, match=r"unexpected error \(ValueError: math domain error\)"):
+        _run("registersift", dict(TARGET=pair["target"], REFERENCE=pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
+    from hamta.core.errors import UsageError
+
+    def refused(*args, **kwargs):
+        raise UsageError("step must be a positive number")
+
+    monkeypatch.setattr(alg, "run", refused)
+    with pytest.raises(QgsProcessingException, match=r"Invalid parameter: step must be a positive number"):
+        _run("registersift", dict(TARGET=pair["target"], REFERENCE=pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
+
+
 def test_a_bug_in_a_method_names_the_method(provider, pair, tmp_path, monkeypatch):
     import hamta.processing.register_algorithm as alg
     from hamta.core.errors import MethodCrashed
