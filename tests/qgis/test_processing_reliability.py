@@ -78,33 +78,21 @@ def test_an_output_over_the_target_is_refused(provider, pair):
     assert _digest(pair["target"]) == before
 
 
-def test_an_unexpected_error_is_wrapped(provider, pair, tmp_path, monkeypatch):
+@pytest.mark.parametrize("error, says", [
+    (RuntimeError("boom"), r"unexpected error \(RuntimeError: boom\)"),
+    (ValueError("math domain error"), r"unexpected error \(ValueError: math domain error\)"),  # a bug, not the user's
+    ("usage", r"Invalid parameter: step must be a positive number"),
+])
+def test_an_unexpected_error_is_wrapped_and_a_usage_error_named_as_one(provider, pair, tmp_path, monkeypatch, error,
+                                                                       says):
     import hamta.processing.register_algorithm as alg
-
-    def broken(*args, **kwargs):
-        raise RuntimeError("boom")
-
-    monkeypatch.setattr(alg, "run", broken)
-    with pytest.raises(QgsProcessingException, match=r"unexpected error \(RuntimeError: boom\)"):
-        _run("registersift", dict(TARGET=pair["target"], REFERENCE=pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
-
-
-def test_a_value_error_from_the_work_is_a_bug_not_an_invalid_parameter(provider, pair, tmp_path, monkeypatch):
-    import hamta.processing.register_algorithm as alg
-
-    def broken(*args, **kwargs):
-        raise ValueError("math domain error")
-
-    monkeypatch.setattr(alg, "run", broken)
-    with pytest.raises(QgsProcessingException, match=r"unexpected error \(ValueError: math domain error\)"):
-        _run("registersift", dict(TARGET=pair["target"], REFERENCE=pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
     from hamta.core.errors import UsageError
 
-    def refused(*args, **kwargs):
-        raise UsageError("step must be a positive number")
+    def broken(*args, **kwargs):
+        raise UsageError("step must be a positive number") if error == "usage" else error
 
-    monkeypatch.setattr(alg, "run", refused)
-    with pytest.raises(QgsProcessingException, match=r"Invalid parameter: step must be a positive number"):
+    monkeypatch.setattr(alg, "run", broken)
+    with pytest.raises(QgsProcessingException, match=says):
         _run("registersift", dict(TARGET=pair["target"], REFERENCE=pair["reference"], OUTPUT=str(tmp_path / "o.tif")))
 
 
