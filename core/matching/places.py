@@ -118,14 +118,18 @@ def placement_problem(c, target_shape, area_shape) -> Optional[str]:
     m = np.asarray(c.matrix, float)
     if m.shape != (2, 3) or not np.isfinite(m).all():
         return "its placement is not a finite 2 x 3 matrix"
-    with np.errstate(over="ignore", invalid="ignore"):
+    with np.errstate(all="ignore"):
         det = float(np.linalg.det(m[:, :2]))
-    if not det > 0:
+        columns = float(np.linalg.norm(m[:, 0]) * np.linalg.norm(m[:, 1]))
+    if not det > 1e-6 * columns:  # the sine of the angle between the target's axes placed: round-off is no angle
         return "its placement is flat or mirrored"
     side = math.sqrt(det) * max(target_shape)
     least, most = PLACE_SIDES
     if not least <= side <= most * max(area_shape):
         return f"its footprint would be {side:.0f} area px across"
+    centre = m @ [target_shape[1] / 2, target_shape[0] / 2, 1.0]
+    if np.any(np.abs(centre - np.array(area_shape[::-1]) / 2) > most * max(area_shape)):
+        return "its footprint would lie far outside the area"
     return None
 
 
