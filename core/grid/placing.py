@@ -42,15 +42,23 @@ def few_lines(source, plane: Plane, hints, step) -> tuple:
 
 def too_fine(source, plane: Plane, hints, step) -> bool:
     """Whether a lattice of ``step`` would put crossings closer than :data:`MIN_STEP_PX` (or too many)."""
+    return _started(source, plane, hints, step) is None
+
+
+def _started(source, plane: Plane, hints, step):
+    """(the hints' first model, the crossings it puts on the sheet, their spacing in scan px) of the lattice of
+    ``step``, or None where the hints leave the plane, or the crossings would be too many or closer than
+    :data:`MIN_STEP_PX`."""
     hint_xy = plane.forward(hints[:, 2:])
     if not np.isfinite(hint_xy).all():
-        return True
+        return None
     start = first_model(hints[:, :2], hint_xy)
     try:
         nodes = _nodes(start, source.shape, plane, step)
     except InputError:
-        return True
-    return not _spacing(start, nodes, plane, step) >= MIN_STEP_PX
+        return None
+    spacing = _spacing(start, nodes, plane, step)
+    return (start, nodes, spacing) if spacing >= MIN_STEP_PX else None
 
 
 @dataclass(frozen=True)
@@ -74,17 +82,10 @@ def place_lattice(source, works, plane: Plane, hints, step, bend: bool = False, 
     """The lattice of ``step`` (along grid x, along grid y) in ``plane`` from the hints' first model (``bend``:
     second-order where that finds more ink), or None where its crossings would be too close or too many to be a
     printed grid. ``works``: the reduced line maps computed so far, by reduction."""
-    hint_xy = plane.forward(hints[:, 2:])
-    if not np.isfinite(hint_xy).all():
+    started = _started(source, plane, hints, step)
+    if started is None:
         return None
-    start = first_model(hints[:, :2], hint_xy)
-    try:
-        nodes = _nodes(start, source.shape, plane, step)
-    except InputError:
-        return None
-    spacing = _spacing(start, nodes, plane, step)
-    if not spacing >= MIN_STEP_PX:
-        return None
+    start, nodes, spacing = started
     factor = _factor(spacing, source.shape)
     work = _work(source, works, factor)
     lines, axes, values = _grid_lines(nodes, step, plane, spacing / factor)

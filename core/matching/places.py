@@ -114,7 +114,7 @@ def candidates(target, learned, image, valid, whole: bool, structure=None):
 def placement_problem(c, target_shape, area_shape) -> Optional[str]:
     """Why candidate ``c`` (target working px of ``target_shape`` -> area px of ``area_shape``, both (rows,
     columns)) places nothing, or None: a matrix not finite, flat or mirrored (both spaces have rows running
-    down), or a footprint outside :data:`PLACE_SIDES`."""
+    down), or a footprint outside :data:`PLACE_SIDES` in size or far outside the area."""
     m = np.asarray(c.matrix, float)
     if m.shape != (2, 3) or not np.isfinite(m).all():
         return "its placement is not a finite 2 x 3 matrix"
