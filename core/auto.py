@@ -8,8 +8,9 @@ matching (``xmodal``), then, where the optional 'learned' extra is installed, XF
 features (images of other years, :mod:`hamta.core.methods.xfeat`), then the structural (CFOG) search
 for north-up modality gaps, then
 SAR-specific matching, and last the slow all-rotation structural search, each checked by the
-same independent verification (:mod:`hamta.core.verify`), until one verifies or the time budget
-is spent. The result says which methods ran, in what order, how long each took and why each was
+same independent verification (:mod:`hamta.core.verify`), until one verifies or the chain ends (a count
+of methods: the same work, and the same verdict, on any machine and under any load; a time cap is the
+user's choice, off by default). The result says which methods ran, in what order, how long each took and why each was
 accepted or rejected; when none verified, the best unverified result is returned, marked as such.
 Two results of different methods that each have partial support from the check and agree with
 each other within the tolerance verify each other (agreement between independent estimates).
@@ -122,28 +123,30 @@ def register_auto(attempt: Callable, options, monitor: Monitor, chain) -> object
     error above :data:`PRECISE_SHARE` of ``options.tolerance_px``, the precise steps after it run until one is
     bounded within that, and the verified result with the smallest bound is returned.
 
-    ``options.auto_budget_s`` is a deadline: once spent, the running step is stopped (at its next
-    progress report) and no further step starts. The first step is exempt, so that a budget shorter
-    than the fast path still gives a result. Raises :class:`InsufficientMatchesError` (listing
-    every attempt) when no step produced a model. Only that error means "no model": a step raising
-    anything else but a Hamta error is a bug, and ends the run as :class:`MethodCrashed` naming it.
+    The chain bounds the work. ``options.auto_budget_s``, where the user sets it, is a time cap: once spent,
+    the running step is stopped (at its next progress report) and no further step starts. The first step is
+    exempt, so that a cap shorter than the fast path still gives a result. Raises
+    :class:`InsufficientMatchesError` (listing every attempt) when no step produced a model. Only that error
+    means "no model": a step raising anything else but a Hamta error is a bug, and ends the run as
+    :class:`MethodCrashed` naming it.
     """
     start = time.perf_counter()
-    spent = f"time budget of {options.auto_budget_s:g} s spent"
+    cap = options.auto_budget_s
+    spent = f"time cap of {cap:g} s spent" if cap is not None else ""
     attempts: List[Attempt] = []
     found = []
     best, chosen = None, None
     polishing = Polishing.UNDECIDED
     for i, step in enumerate(chain):
-        if time.perf_counter() - start > options.auto_budget_s:
+        if cap is not None and time.perf_counter() - start > cap:
             attempts.append(tried(step, "skipped", spent))
             continue
         if best is not None and best.verified and not step.precise:
             break
         t0 = time.perf_counter()
         step_monitor = monitor.span(i / len(chain), (i + 1) / len(chain))
-        if i:
-            step_monitor = step_monitor.until(start + options.auto_budget_s)
+        if i and cap is not None:
+            step_monitor = step_monitor.until(start + cap)
         result, record = run_step(attempt, step, step_monitor, spent, t0)
         attempts.append(record)
         if result is None:

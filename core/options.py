@@ -287,9 +287,12 @@ class RegisterOptions:
     tolerance_px: float = option(
         3.0, "Accuracy asked for (reference px)", "accuracy asked for, reference px: a result is verified only "
         "when the independent check bounds its error within this", minimum=0, above=True, flag="tolerance")
-    auto_budget_s: float = option(
-        120.0, "Time budget of 'auto' (s)", "seconds 'auto' may spend: then the method running is stopped (the "
-        "first, the fast path, always completes) and no further one starts", minimum=0, flag="auto-budget")
+    auto_budget_s: Optional[float] = option(
+        None, "Time cap of 'auto' (s)", "a cap on the seconds 'auto' and a basemap search may spend: then the "
+        "method running is stopped (the first, the fast path, always completes) and no further method or place "
+        "starts. Without it what they try is bounded by counts (methods, places, requests), so the verdict is the "
+        "same on any machine and under any load; with it, a slower or busier machine may try less",
+        minimum=0, flag="auto-budget", unset="no cap")
     local: bool = option(
         False, "Local (non-rigid) correction", "after the global model, correct local (non-rigid) misalignment "
         "from shifts measured on a dense grid of windows; the model becomes a thin plate spline through the grid",

@@ -17,7 +17,10 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
   registration is verified like any other, held to its share of one check's risk of verifying a wrong model
   (``SEARCH_TRIES``: a search checks several); the first verified one is the result (else the best
   unverified one). A place found is only where to look, never a result; one that puts the target
-  outside the search area is not taken. The run's time budget bounds the whole search.
+  outside the search area is not taken. Counts bound the whole search (the zooms of :func:`search_zooms`,
+``MAX_PLACES`` places, ``SEARCH_REQUESTS`` requests, each place's short chain of methods), so it tries the
+same places with the same outcomes on any machine and under any load; a time cap
+(``RegisterOptions.auto_budget_s``) is the user's choice, off by default.
 
 A place's failure is that place's outcome (no data there, no model, a read area that misses it, the
 requests spent): it is noted with the place in the result's notes and ``reference_service['places']``,
@@ -63,6 +66,7 @@ from .pipeline import register
 from .progress import Monitor
 from .remote_places import (
     MAX_PLACES,
+    SEARCH_TRIES,
     PlaceFailed,
     failure,
     register_placed,
@@ -85,7 +89,7 @@ def register_remote(target, service: TileService, options: RegisterOptions, moni
 
     def register_onto(path, span, within=None, options=None, **extra):
         """``within``: the part of the area file to search (bounds in its CRS); all of it by default.
-        ``options``: the run's unless given (a search's places get what is left of its time budget)."""
+        ``options``: the run's unless given (a search's places get what is left of its time cap)."""
         area = None if within is None else ",".join(f"{v:.10g}" for v in within) + f",{service.crs}"
         return register(target, path, options=dataclasses.replace(options or local, extent=area),
                         progress=span.report, is_canceled=span.canceled, **extra, **kwargs)
@@ -161,12 +165,12 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
     features = target_features(info, options.target_band)
     learned = learned_target_features(*features[2])
     zooms = search_zooms(reader.service, bounds)
-    search = _Search(info, reader, options, monitor, register_onto, bounds)
-    for i, z in enumerate(zooms):
-        if time.monotonic() > search.deadline:  # a finer zoom costs its tiles and its locating before any place
+    search = _Search(info, reader, options, monitor, register_onto, bounds, len(zooms))
+    for z in zooms:
+        if search.capped():  # a finer zoom costs its tiles and its locating before any place
             search.notes.extend([search.spent] if search.spent not in search.notes else [])
             break
-        span = search.ahead(f"zoom {z}", len(zooms) - i + MAX_PLACES - len(search.placed_at))
+        span = search.ahead(f"zoom {z}")
         if search.searched and search.leaves_too_few_requests(z):
             break
         try:
@@ -192,25 +196,34 @@ def _search(info, reader: AreaReader, options: RegisterOptions, monitor: Monitor
 
 
 class _Search:
-    """What one search has done so far: the zooms searched, the places tried, the best result and zoom, and
-    when its time budget ends."""
+    """What one search has done so far: the zooms searched, the places tried, the best result and zoom, and,
+    where the user set a time cap, when it ends. ``zooms``: how many zooms it may read."""
 
-    def __init__(self, info, reader: AreaReader, options: RegisterOptions, monitor: Monitor, register_onto, bounds):
+    def __init__(self, info, reader: AreaReader, options: RegisterOptions, monitor: Monitor, register_onto, bounds,
+                 zooms: int):
         self.info, self.reader, self.options, self.monitor = info, reader, options, monitor
         self.register_onto, self.bounds, self.notes, self.places = register_onto, bounds, [], []
-        self.deadline = time.monotonic() + options.auto_budget_s
-        self.spent = f"the time budget of {options.auto_budget_s:g} s was spent before every place was tried"
+        cap = options.auto_budget_s
+        self.cap_ends = None if cap is None else time.monotonic() + cap
+        self.spent = "" if cap is None else f"the time cap of {cap:g} s was spent before every place was tried"
+        self.steps = zooms + SEARCH_TRIES  # the bar's parts: each zoom's reading and locating, each registration
         self.best, self.placed_at, self.searched, self.whole_tried = None, [], [], False
 
-    def budgeted(self) -> RegisterOptions:
-        """The options of one place: what is left of the run's time budget."""
-        return dataclasses.replace(self.options, auto_budget_s=max(0.0, self.deadline - time.monotonic()))
+    def capped(self) -> bool:
+        """Whether the user's time cap, where set, is spent."""
+        return self.cap_ends is not None and time.monotonic() > self.cap_ends
 
-    def ahead(self, label, parts_left):
-        """The part of the bar from where the search stands in its time budget to a share of what is left,
-        its messages labelled (the bar moves on while places are tried, whatever their number)."""
-        start = min(0.9, 1.0 - (self.deadline - time.monotonic()) / max(self.options.auto_budget_s, 1e-3))
-        return self.monitor.span(start, start + (1.0 - start) / max(1, parts_left)).labelled(label)
+    def budgeted(self) -> RegisterOptions:
+        """The options of one place: the run's, with what is left of its time cap."""
+        if self.cap_ends is None:
+            return self.options
+        return dataclasses.replace(self.options, auto_budget_s=max(0.0, self.cap_ends - time.monotonic()))
+
+    def ahead(self, label):
+        """The next part of the bar, by the work done (zooms read, places tried) out of the most the search
+        may do, its messages labelled: the same bar on any machine."""
+        start = min(0.95, (len(self.searched) + len(self.places)) / self.steps)
+        return self.monitor.span(start, min(1.0, start + 1.0 / self.steps)).labelled(label)
 
     def tried(self, found_by, z, outcome) -> None:
         """Record what became of the place ``found_by``, read at zoom ``z``, in ``places`` and ``notes``."""
@@ -240,7 +253,7 @@ class _Search:
         searched = self.searched
         structure = grey, grey_valid, structure_sides(side, 2.0 ** (z - searched[-2]) if len(searched) > 1 else None)
         for found_by, c in self._guarded(candidates(target, learned, image, valid, not self.whole_tried, structure), z):
-            if time.monotonic() > self.deadline:
+            if self.capped():
                 self.notes.append(self.spent)
                 break
             what = f"a place {found_by} found at zoom {z}"
@@ -254,8 +267,7 @@ class _Search:
                 if attempt is None:
                     continue
                 what = attempt.what
-                result, z_fine = attempt.register(self.budgeted(), self.register_onto,
-                                                  self.ahead(attempt.label, MAX_PLACES + 1 - len(self.placed_at)))
+                result, z_fine = attempt.register(self.budgeted(), self.register_onto, self.ahead(attempt.label))
             except RegistrationCanceled:
                 raise
             except HamtaError as exc:
@@ -309,7 +321,8 @@ class _Search:
             f"read at zoom{'s' if len(searched) > 1 else ''} {', '.join(map(str, searched))}): "
             + (f"none of the {len(places)} places tried registered ({_outcomes(places)}). " if places else
                "no place in it looked enough like the target. ")
-            + "".join(f"{n[0].upper()}{n[1:]}. " for n in self.notes if "was not searched" in n or n == self.spent)
+            + "".join(f"{n[0].upper()}{n[1:]}. " for n in self.notes if "was not searched" in n or
+                      (self.spent and n == self.spent))
             + "Zoom the map closer to where the target is (a search area a few times its size), and check that the "
               "area holds it; a target that is mirrored, or whose ground has mostly changed since, may not be found.",
             0, MIN_INLIERS)

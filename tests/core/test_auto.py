@@ -47,8 +47,8 @@ def test_auto_takes_no_method_parameters(demo_pair):
         register(demo_pair["target"], demo_pair["reference"], "auto", params={"ratio": 0.7})
 
 
-def test_the_budget_stops_a_running_method(monkeypatch):
-    """The budget is a deadline: a step still running when it is spent stops at its next progress
+def test_a_time_cap_the_user_sets_stops_a_running_method(monkeypatch):
+    """A time cap is a deadline: a step still running when it is spent stops at its next progress
     report (the first step, the fast path, is exempt), and the steps after it do not start."""
     import time
 
@@ -67,8 +67,8 @@ def test_the_budget_stops_a_running_method(monkeypatch):
 
     chain = (Step("first", {}, "t"), Step("slow", {}, "t"), Step("never", {}, "t"))
     t0 = time.perf_counter()
-    with pytest.raises(InsufficientMatchesError, match="first: nothing; slow: time budget of 1 s spent; never: time "
-                                                        "budget"):
+    with pytest.raises(InsufficientMatchesError, match="first: nothing; slow: time cap of 1 s spent; never: time "
+                                                        "cap"):
         auto_module.register_auto(attempt, RegisterOptions(auto_budget_s=1.0), Monitor(), chain)
     assert ran == ["first", "slow"] and time.perf_counter() - t0 < 2.0
 
@@ -219,3 +219,25 @@ def test_the_chain_of_every_plan(monkeypatch, learned, prior, short):
     assert [(s.method, dict(s.params)) for s in chain] == CHAINS[learned, prior, short]
     assert [(s.refine, s.precise, s.rough) for s in chain] == [
         (refine, precise and not short, rough) for refine, precise, rough in (FLAGS[s.method] for s in chain)]
+
+
+def test_without_a_cap_every_step_runs_however_slow(monkeypatch):
+    """No time cap by default: the chain is the budget, so a slow machine tries what a fast one tries."""
+    import time
+
+    from hamta.core import RegisterOptions
+    from hamta.core.progress import Monitor
+
+    ran = []
+
+    def attempt(method, params, monitor, refine):
+        ran.append(method)
+        time.sleep(0.3)
+        monitor.report(0.5, "working")
+        raise InsufficientMatchesError("nothing", 0, 8)
+
+    chain = tuple(Step(name, {}, "t") for name in ("a", "b", "c", "d"))
+    assert RegisterOptions().auto_budget_s is None
+    with pytest.raises(InsufficientMatchesError, match="a: nothing; b: nothing; c: nothing; d: nothing"):
+        auto_module.register_auto(attempt, RegisterOptions(), Monitor(), chain)
+    assert ran == ["a", "b", "c", "d"]

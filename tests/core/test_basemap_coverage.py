@@ -74,14 +74,13 @@ def test_a_layer_that_stops_above_the_search_zooms_is_read_at_its_finest_zoom(la
     result, never an error of the layer's zooms; a rerun asks for no zoom beyond it."""
     target = rotated_target(landsat, str(tmp_path / "fine.png"), CENTRE, (480, 640), 8.0, 10.0)
     with TileServer(landsat, zmax=10) as tiles:
-        result, fetcher = _search(target, tiles.xyz(), tmp_path, 2.0, auto_budget_s=5)
+        result, fetcher = _search(target, tiles.xyz(), tmp_path, 2.0)
         service = result.reference_service
         assert max(service["zooms_read"]) == 10 and service["finest_zoom"] == 10, service
         assert not result.verified or _rmse_px(target, result) <= 1.0, result.notes
         assert any("SIFT" in p["found_by"] for p in service["places"]), service["places"]
-        again, fetcher = _search(target, tiles.xyz(), tmp_path, 2.0, auto_budget_s=5)
-        # the finest zoom is remembered: no tile beyond it is asked again (places the time budget reached only
-        # now may read new areas)
+        again, fetcher = _search(target, tiles.xyz(), tmp_path, 2.0)
+        # the finest zoom is remembered, and the same places are tried: no tile is asked again
         assert fetcher.stats.missing == 0, fetcher.stats
         assert again.reference_service["zooms_read"][0] == service["zooms_read"][0] == 10
 
@@ -155,7 +154,7 @@ def test_a_place_that_fails_is_that_places_outcome_and_the_search_goes_on(case, 
 def test_a_search_that_finds_nothing_lists_the_places_it_tried(case, server, tmp_path, monkeypatch):
     monkeypatch.setattr(remote, "register", _no_model)
     with pytest.raises(InsufficientMatchesError) as info:
-        _search(case, server.xyz("sparse"), tmp_path, 5.0, auto_budget_s=20)
+        _search(case, server.xyz("sparse"), tmp_path, 5.0)
     message = str(info.value)
     assert "no model (too few agreeing points)" in message and "places tried" in message, message
     assert "areas" not in message
