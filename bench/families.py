@@ -28,14 +28,16 @@ from .synthetic import make_landscape
 
 FAMILIES = ("rotation", "scale", "affine", "overlap", "speckle", "multimodal", "georeferenced", "pairs", "crops",
             "should-fail", "collar") + tuple(multimodal_set.CATEGORIES) + ("large", "writing", "nonrigid", "batch",
-                                                                          "basemap", "basemap-real", "speed",
-                                                                          "years-apart", "basemap-requests", "scanned",
-                                                                          "scanned-random", "scanned-random-tune")
+                                                                          "basemap", "basemap-real", "basemap-dates",
+                                                                          "speed", "years-apart", "basemap-requests",
+                                                                          "scanned", "scanned-random",
+                                                                          "scanned-random-tune")
 # The real multimodal set (600 pairs), 'large' (a Sentinel-2-sized scene, ~1 GB of files), 'writing' (the
 # output writer against gdalwarp, no registration cases of its own), 'nonrigid' (local distortion, for the
 # local correction), 'batch' (throughput on a Dask cluster, no cases of its own) and 'basemap' (onto a local
 # tile server, a study of its own: hamta.bench.goals.basemap; 'basemap-real' onto tiles of another date:
-# hamta.bench.goals.basemap_real), 'speed' (whole runs against each peer on
+# hamta.bench.goals.basemap_real; 'basemap-dates' its held-out cases: hamta.bench.goals.basemap_dates),
+# 'speed' (whole runs against each peer on
 # its own ground: hamta.bench.goals.speed) and 'years-apart' (dates years apart, georeferencing moved:
 # hamta.bench.goals.years_apart) and 'basemap-requests' (the requests a search sends on a layer with data
 # everywhere: hamta.bench.goals.basemap_requests) and 'scanned' (sheets by their own printed grid:
@@ -291,7 +293,8 @@ _SPECS = {"crops": _crops, "should-fail": _should_fail, "collar": _collar,
           "rotation": _rotation, "scale": _scale, "affine": _affine, "overlap": _overlap, "speckle": _speckle,
           "multimodal": _multimodal, "georeferenced": _georeferenced, "pairs": _pairs, "large": _large,
           "writing": lambda quick: [], "nonrigid": _nonrigid, "batch": lambda quick: [], "basemap": lambda quick: [],
-          "basemap-real": lambda quick: [], "speed": lambda quick: [], "years-apart": lambda quick: [],
+          "basemap-real": lambda quick: [], "basemap-dates": lambda quick: [], "speed": lambda quick: [],
+          "years-apart": lambda quick: [],
           "basemap-requests": lambda quick: [], "scanned": lambda quick: [],
           "scanned-random": lambda quick: [], "scanned-random-tune": lambda quick: []}
 
@@ -438,6 +441,10 @@ def available(family: str, data_dir: str) -> bool:
         from .goals.basemap_real import available as real_available
 
         return real_available(data_dir)
+    if family == "basemap-dates":  # the held-out dates, windows and files of the same images
+        from .goals.basemap_dates import available as dates_available
+
+        return dates_available(data_dir)
     if family == "years-apart":
         from .goals.years_apart import available as years_available
 

@@ -184,7 +184,7 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
         if progress:
             progress(done / max(len(specs), 1), f"{done}/{len(specs)} cases")
     rows.sort(key=lambda r: (FAMILIES.index(r["family"]), r["case"], list(config.methods).index(r["method"])))
-    reproductions = run_reproductions(config, rows, progress) if config.reproductions else []
+    reproductions, study_rows = run_reproductions(config, rows, progress) if config.reproductions else ([], {})
     report = {
         "meta": {"date": datetime.datetime.now().isoformat(timespec="seconds"), "duration_s": round(
             time.perf_counter() - t0, 1), "config": {k: list(v) if isinstance(v, tuple) else v
@@ -194,6 +194,7 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
         "summary": summarise(rows, config.methods),
         "reproductions": reproductions,
         "cases": rows,
+        "study_rows": study_rows,
     }
     with open(os.path.join(config.out_dir, "bench.json"), "w") as f:
         json.dump(clean(report), f, indent=1, allow_nan=False)
@@ -202,12 +203,13 @@ def run_bench(config: BenchConfig, progress: Optional[Callable[[float, str], Non
     return report
 
 
-def run_reproductions(config: BenchConfig, bench_rows: List[dict], progress=None) -> list:
-    """Each paper's own evaluation whose method is benchmarked and whose families are selected.
-    A reproduction without units of its own is computed from the benchmark's rows."""
+def run_reproductions(config: BenchConfig, bench_rows: List[dict], progress=None) -> tuple:
+    """Each paper's own evaluation whose method is benchmarked and whose families are selected: (its tables,
+    {study: its rows} of the studies with units of their own, to compare runs). A reproduction without units of
+    its own is computed from the benchmark's rows."""
     from .studies import all_studies
 
-    tables = []
+    tables, study_rows = [], {}
     names = {parse_variant(m)[0] for m in config.methods}
     for rep in all_studies():
         if not set(rep.methods) & names or not set(rep.families) & set(config.families):
@@ -225,7 +227,8 @@ def run_reproductions(config: BenchConfig, bench_rows: List[dict], progress=None
                 progress((i + 1) / len(units), f"reproducing {rep.name}: {i + 1}/{len(units)}")
         if rows:
             tables.extend(rep.tables(rows))
-    return tables
+            study_rows[rep.name] = rows
+    return tables, study_rows
 
 
 def _run_unit(args):

@@ -5,6 +5,7 @@ from __future__ import annotations
 def all_studies():
     """Every study, the papers' reproductions first."""
     from .goals.basemap import STUDY as basemap
+    from .goals.basemap_dates import STUDY as basemap_dates
     from .goals.basemap_real import STUDY as basemap_real
     from .goals.basemap_requests import STUDY as basemap_requests
     from .goals.batch import STUDY as batch
@@ -20,5 +21,6 @@ def all_studies():
     from .reproductions.rilbp import STUDY as rilbp
     from .reproductions.sibrif import STUDY as sibrif
 
-    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, basemap_requests,
+    return [rilbp, sibrif, ndsift, lines_spectral, writing, large, batch, basemap, basemap_real, basemap_dates,
+            basemap_requests,
             speed, years_apart, scanned, scanned_random, scanned_random_tune]

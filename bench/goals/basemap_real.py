@@ -92,26 +92,33 @@ def build(i: int, side: float, data_dir: str, folder: str):
 def run_unit(unit, config) -> list:
     """One row: the pair's target searched for on the other date, served by a local tile server; right within
     3 px of the zoom registered at or 2 px of the target's source, whichever is coarser."""
+    i, side, kind, method = unit
+    name = f"{os.path.splitext(PAIRS[i][0])[0]}-onto-{os.path.splitext(PAIRS[i][1])[0][-8:]}"
+    folder = os.path.join(config.out_dir, "cases", "basemap-real", f"{name}-{side:g}x-{kind}")
+    case, basemap, extent = build(i, side, config.data_dir, folder)
+    row, _ = searched(case, basemap, extent, kind, method)
+    return [dict(row, unit=f"{name}-{side:g}x-{kind}", case=name, side=side)]
+
+
+def searched(case, basemap: str, extent: str, kind: str, method: str):
+    """(row, result) of ``case`` searched for in ``extent`` on ``basemap`` served as 'xyz' tiles or 'wms' by a
+    local tile server, from an empty cache: the judged outcome, time, requests and peak memory."""
     from ...core import RegisterOptions, run
     from ...core.basemap.fetch import Fetcher
     from ..memory import PeakRss
     from ..tileserver import TileServer
 
-    i, side, kind, method = unit
-    name = f"{os.path.splitext(PAIRS[i][0])[0]}-onto-{os.path.splitext(PAIRS[i][1])[0][-8:]}"
-    folder = os.path.join(config.out_dir, "cases", "basemap-real", f"{name}-{side:g}x-{kind}")
-    case, basemap, extent = build(i, side, config.data_dir, folder)
     cache = tempfile.mkdtemp(prefix="hamta-bench-cache-")
-    row = {"unit": f"{name}-{side:g}x-{kind}", "case": name, "method": method, "kind": kind, "side": side,
-           "target_px": [case.shape[1], case.shape[0]], "data_share": _data_share(basemap, extent),
-           "source_px_m": _source_px(case)}
+    row = {"method": method, "kind": kind, "target_px": [case.shape[1], case.shape[0]],
+           "data_share": _data_share(basemap, extent), "source_px_m": _source_px(case)}
+    result = None
     try:
         with TileServer(basemap, zmax=native_zoom(basemap)) as server:
             reference = server.xyz("photo") if kind == "xyz" else (
                 f"crs=EPSG:3857&format=image/png&layers=photo&styles=&url={server.url}/wms")
             fetcher = Fetcher(cache=cache)
             t0 = time.perf_counter()
-            result, error = None, None
+            error = None
             with PeakRss() as peak:
                 try:
                     result, _ = run(case.path, reference, None, method=method,
@@ -127,7 +134,7 @@ def run_unit(unit, config) -> list:
         row["tolerance_px"] = tolerance
         right = row["rms_px"] <= tolerance
         row["outcome"] = ("verified" if right else "WRONG") if result.verified else "unverified"
-    return [row]
+    return row, result
 
 
 def _source_px(case) -> float:

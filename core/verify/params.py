@@ -95,6 +95,14 @@ class VerifyParams:
         p = self.second_look() if v.look == "structure" else self
         return v.chance <= p.max_chance or (v.z_chance <= p.max_z_chance and v.z_mw <= p.max_rank_chance)
 
+    def shortfall(self, v: "Verification") -> float:
+        """How many times more likely by chance ``v``'s agreement is than these levels allow, by the nearer of
+        the two measures (at most 1 where it is :meth:`significant`): the strength of its evidence, comparable
+        across results whatever their number of sites."""
+        p = self.second_look() if v.look == "structure" else self
+        ratio = min(v.chance / p.max_chance, max(v.z_chance / p.max_z_chance, v.z_mw / p.max_rank_chance))
+        return ratio if math.isfinite(ratio) else math.inf
+
     @property
     def agree_px(self) -> float:
         return min(max(self.tolerance_px, 2.0), 6.0)

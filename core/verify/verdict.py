@@ -187,6 +187,11 @@ def error_bound(v) -> float:
 
 
 def result_rank(result):
-    """Sort key of results, best last: the verdict, then agreeing sites, then the smaller error bound."""
+    """Sort key of results, best last: the verdict, then the stronger evidence (the agreement least likely by
+    chance, :meth:`VerifyParams.shortfall`: a count of agreeing sites favours a model that merely lies over
+    more of them; on held-out Landsat dates a wrong model agreeing at 4 of 12 sites, with probability 8e-3,
+    was returned over a right one agreeing at 3 of 7 with 2e-4), then agreeing sites, then the smaller error
+    bound."""
     v = result.verification
-    return VERDICT_RANK[v.verdict], v.n_agree, -(v.error_bound_px if v.error_bound_px is not None else 1e9)
+    evidence = -VerifyParams(tolerance_px=v.tolerance_px).shortfall(v)
+    return VERDICT_RANK[v.verdict], evidence, v.n_agree, -(v.error_bound_px if v.error_bound_px is not None else 1e9)

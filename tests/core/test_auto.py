@@ -111,6 +111,11 @@ class _Check:
     error_bound_px: float
     n_agree: int = 12
     reasons: tuple = ()
+    tolerance_px: float = 3.0
+    chance: float = 1e-3
+    z_chance: float = 1.0
+    z_mw: float = 1.0
+    look: str = "grid"
 
     @property
     def verified(self):
