@@ -12,7 +12,8 @@ A tile layer covers the world at many zoom levels, so it is never read whole. Th
   each zoom the target sides the coarser ones were too coarse for, so the finest finds targets 1/40 of the
   area's side); each of the few places found has its footprint (plus ``LOCATED_MARGIN``) read at the zoom
   nearest the target's own pixels, and the target is registered there with that place as its prior, as if
-  it had been georeferenced there. At the first zoom, before the places with few agreeing features, the
+  it had been georeferenced there, and where that does not verify, onto the same area without it (a place is
+  coarse). At the first zoom, before the places with few agreeing features, the
   whole area is registered once as well (the target assumed to cover ``AREA_SHARE`` of it). Each
   registration is verified like any other, held to its share of one check's risk of verifying a wrong model
   (``SEARCH_TRIES``: a search checks several); the first verified one is the result (else the best

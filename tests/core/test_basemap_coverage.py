@@ -119,7 +119,8 @@ def test_a_finer_read_skips_the_tiles_far_from_the_data(tmp_path):
 
 def test_a_place_that_fails_is_that_places_outcome_and_the_search_goes_on(case, server, tmp_path, monkeypatch):
     """The first place found lies where the layer has no data, the second's registration finds that its read
-    area misses it: both are noted, and the search goes on to the right place."""
+    area misses it, with the place as its prior and without: both are noted, and the search goes on to the
+    right place."""
     found = remote.candidates
     misses = []
 
@@ -132,7 +133,7 @@ def test_a_place_that_fails_is_that_places_outcome_and_the_search_goes_on(case, 
     real = remote.register
 
     def missing_once(*args, **kwargs):
-        if kwargs.get("placed") is not None and not misses:
+        if (kwargs.get("placed") is not None and not misses) or len(misses) == 1:  # with the place and without
             misses.append(1)
             raise NoOverlapError("The target raster 'x' and the reference raster '/cache/areas/area-1.tif' do not "
                                  "overlap according to their georeferencing. If the target's georeferencing is wrong, "
@@ -264,3 +265,23 @@ def test_a_locator_that_fails_ends_that_zoom_noted_not_the_search(case, server, 
     result, _ = _search(case, server.xyz("sparse"), tmp_path, 30.0)
     assert any("failed: internal error (ZeroDivisionError" in n for n in result.notes), result.notes
     assert len(calls) >= 2
+
+
+def test_a_place_that_gives_nothing_with_its_prior_is_registered_without_it(case, server, tmp_path, monkeypatch):
+    """A locator's place is coarse: where the registration that starts from it gives nothing, the place's area
+    is registered again at any turn and scale, and that result is kept."""
+    real = remote.register
+    ways = []
+
+    def no_model_from_a_prior(*args, **kwargs):
+        ways.append("prior" if kwargs.get("placed") is not None else "free")
+        if kwargs.get("placed") is not None:
+            raise InsufficientMatchesError("too few matches", 2, 8)
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(remote, "register", no_model_from_a_prior)
+    result, _ = _search(case, server.xyz("sparse"), tmp_path, 5.0)
+    assert result.verified and _rmse_px(case, result) <= 1.0, result.notes
+    assert result.reference_service["places"][-1]["outcome"] == "verified"
+    assert ways.count("prior") >= 1 and ways[ways.index("prior") + 1] == "free", ways
+    assert remote.SEARCH_TRIES == 1 + 2 * (remote.MAX_PLACES + 1)
