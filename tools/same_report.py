@@ -34,15 +34,17 @@ def _decided(row):
 def main(a, b) -> int:
     first, second = _rows(a), _rows(b)
     differ = 0
-    for key in sorted(set(first) | set(second)):
-        x, y = (_decided(rows[key]) if key in rows else None for rows in (first, second))
+    for key in sorted(set(first) ^ set(second)):
+        print(" / ".join(key), "only in", a if key in first else b)
+    for key in sorted(set(first) & set(second)):
+        x, y = (_decided(rows[key]) for rows in (first, second))
         if x != y:
             differ += 1
             print(" / ".join(key))
             for field in sorted(set(x or {}) | set(y or {})):
                 if (x or {}).get(field) != (y or {}).get(field):
                     print(f"  {field}: {(x or {}).get(field)!r} -> {(y or {}).get(field)!r}")
-    print(f"{len(first)} and {len(second)} cases; {differ} differ")
+    print(f"{len(first)} and {len(second)} cases, {len(set(first) & set(second))} in both; {differ} of those differ")
     return 1 if differ else 0
 
 
