@@ -12,7 +12,8 @@ FIELDS = ("outcome", "verdict", "verified", "method_used", "method", "zoom", "zo
 
 
 def _rows(path):
-    report = json.load(open(path))
+    out = json.load(open(path))["meta"]["config"]["out_dir"]
+    report = json.loads(open(path).read().replace(out, "OUT"))  # the run's own folder, named in notes
     rows = {}
     for study, these in report.get("study_rows", {}).items():
         for r in these:

@@ -98,9 +98,14 @@ def _centres(m: np.ndarray) -> np.ndarray:
     return out
 
 
+XFEAT_STRIDE = 32  # XFeat crops its input to a multiple of this: an image with a side below it has no features
+
+
 def _detect(stretched: np.ndarray, valid: np.ndarray, top_k: int) -> Features:
     import torch
 
+    if min(stretched.shape) < XFEAT_STRIDE:  # XFeat's own preprocessing divides by the cropped size
+        return _empty()
     net = model()
     fill = float(stretched[valid].mean()) if valid.any() else 0.0
     data = np.where(valid, stretched, fill).astype(np.float32)

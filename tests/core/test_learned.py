@@ -127,3 +127,11 @@ def test_large_images_are_matched_shrunk_alike_and_the_matches_scaled_back():
     predicted = found.target_xy @ truth[:, :2].T + truth[:, 2]
     right = np.hypot(*(predicted - found.reference_xy).T) < 4.0  # working px: shrunk keypoints scaled back
     assert right.sum() >= 30 and right.mean() > 0.5, (right.sum(), len(found))
+
+
+@needs_extra
+def test_a_target_thinner_than_xfeat_s_stride_has_no_features_not_a_crash():
+    """XFeat divides by its input cropped to a multiple of 32 px: a 20 px strip once crashed a basemap place."""
+    strip = grey(make_landscape((20, 300), seed=3))
+    found = xfeat.turned_features(strip, np.ones(strip.shape, bool), 0.0, 1.0, 500)
+    assert len(found.keypoints.xy) == 0 and found.descriptors.shape == (0, 64)
