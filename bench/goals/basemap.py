@@ -119,11 +119,7 @@ def rotated_target(source: str, path: str, centre, shape, scale: float, angle_de
 
     rgb, valid, transform, crs = _read_source(source)
     h, w = shape
-    a = math.radians(angle_deg)
-    lin = np.array([[math.cos(a), math.sin(a)], [-math.sin(a), math.cos(a)]]) / scale  # target -> source
-    off = np.asarray(centre, float) - lin @ np.array([w / 2.0, h / 2.0])
-    matrix = np.column_stack([lin, off])  # corner convention: source_c = lin @ target_c + off
-    cv_matrix = np.column_stack([lin, off + lin @ np.array([0.5, 0.5]) - 0.5])  # pixel-centre convention
+    matrix, cv_matrix = window_matrix(centre, shape, scale, angle_deg)
     image = cv2.warpAffine(rgb, cv_matrix, (w, h), flags=cv2.INTER_CUBIC | cv2.WARP_INVERSE_MAP)
     inside = cv2.warpAffine(valid.astype(np.uint8), cv_matrix, (w, h), flags=cv2.INTER_NEAREST | cv2.WARP_INVERSE_MAP)
     if inside.mean() < 0.98:  # a few cloud-shadow pixels of the source are nodata
@@ -143,6 +139,16 @@ def rotated_target(source: str, path: str, centre, shape, scale: float, angle_de
 
     return TargetCase(path, (h, w), truth, {"centre": list(centre), "scale": scale, "angle_deg": angle_deg,
                                             "style": style})
+
+
+def window_matrix(centre, shape, scale: float, angle_deg: float):
+    """(corner-convention, OpenCV pixel-centre) 2 x 3 matrices, target px -> source px, of the window of
+    :func:`rotated_target`."""
+    h, w = shape
+    a = math.radians(angle_deg)
+    lin = np.array([[math.cos(a), math.sin(a)], [-math.sin(a), math.cos(a)]]) / scale  # target -> source
+    off = np.asarray(centre, float) - lin @ np.array([w / 2.0, h / 2.0])
+    return np.column_stack([lin, off]), np.column_stack([lin, off + lin @ np.array([0.5, 0.5]) - 0.5])
 
 
 def _write_plain(path: str, image: np.ndarray) -> None:

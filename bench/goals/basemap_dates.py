@@ -19,7 +19,6 @@ What each case varies against 'basemap-real':
 from __future__ import annotations
 
 import dataclasses
-import math
 import os
 import warnings
 
@@ -27,7 +26,7 @@ import numpy as np
 
 from ..study import Study
 from . import basemap_real
-from .basemap import rotated_target
+from .basemap import rotated_target, window_matrix
 
 FOLDER = basemap_real.FOLDER
 # target date, basemap date, window centre (share of width, height), window's longer side (share of the
@@ -92,10 +91,7 @@ def _four_band(source: str, path: str, case) -> str:
     from rasterio.errors import NotGeoreferencedWarning
 
     h, w = case.shape
-    a = math.radians(case.info["angle_deg"])
-    lin = np.array([[math.cos(a), math.sin(a)], [-math.sin(a), math.cos(a)]]) / case.info["scale"]
-    off = np.asarray(case.info["centre"], float) - lin @ np.array([w / 2.0, h / 2.0])
-    cv_matrix = np.column_stack([lin, off + lin @ np.array([0.5, 0.5]) - 0.5])
+    _, cv_matrix = window_matrix(case.info["centre"], case.shape, case.info["scale"], case.info["angle_deg"])
     with rasterio.open(source) as ds:
         bands = np.ascontiguousarray(np.moveaxis(ds.read(), 0, 2))
     image = cv2.warpAffine(bands, cv_matrix, (w, h), flags=cv2.INTER_CUBIC | cv2.WARP_INVERSE_MAP)

@@ -92,16 +92,20 @@ class VerifyParams:
     def significant(self, v: "Verification") -> bool:
         """Whether ``v``'s agreement is as unlikely from wrong alignments as these levels ask (the second look's
         verdicts against these levels' second look)."""
-        p = self.second_look() if v.look == "structure" else self
-        return v.chance <= p.max_chance or (v.z_chance <= p.max_z_chance and v.z_mw <= p.max_rank_chance)
+        return self.shortfall(v) <= 1.0
 
     def shortfall(self, v: "Verification") -> float:
         """How many times more likely by chance ``v``'s agreement is than these levels allow, by the nearer of
-        the two measures (at most 1 where it is :meth:`significant`): the strength of its evidence, comparable
-        across results whatever their number of sites."""
+        the two measures (at most 1 exactly where it is :meth:`significant`; NaN counts as infinitely likely): the
+        strength of its evidence, comparable across results whatever their number of sites."""
         p = self.second_look() if v.look == "structure" else self
-        ratio = min(v.chance / p.max_chance, max(v.z_chance / p.max_z_chance, v.z_mw / p.max_rank_chance))
-        return ratio if math.isfinite(ratio) else math.inf
+
+        def ratio(x, level):
+            r = x / level
+            return r if r == r else math.inf
+
+        return min(ratio(v.chance, p.max_chance), max(ratio(v.z_chance, p.max_z_chance),
+                                                       ratio(v.z_mw, p.max_rank_chance)))
 
     @property
     def agree_px(self) -> float:
